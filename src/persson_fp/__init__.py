@@ -1,0 +1,41 @@
+"""persson-fp: Persson's theory of elastic rough-surface contact as a PDE problem.
+
+The contact-pressure PDF obeys ``E:diffusion_equ`` of the seed,
+dP0/dzeta = 1/2 B2(zeta) d^2P0/dp^2 with an absorbing wall at p = 0; this
+package gives its exact solution (:func:`exact`), the spectrum and fudge-factor
+physics around it, and numerical solvers behind :func:`solve`.
+"""
+
+from . import fudge
+from .effective import EffectiveVariance, effective_variance
+from .exact import ExactSolution, elastic_energy, exact, image_pdf, pressure_spectrum, variance_closed_form
+from .problem import ContactProblem
+from .solution import Comparison, InstabilityError, Solution, SolverError
+from .solvers import METHODS, available_methods, solve
+from .spectrum import PSD, SelfAffinePSD, TabulatedPSD
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "PSD",
+    "SelfAffinePSD",
+    "TabulatedPSD",
+    "ContactProblem",
+    "fudge",
+    "EffectiveVariance",
+    "effective_variance",
+    "ExactSolution",
+    "exact",
+    "image_pdf",
+    "variance_closed_form",
+    "pressure_spectrum",
+    "elastic_energy",
+    "Solution",
+    "Comparison",
+    "SolverError",
+    "InstabilityError",
+    "METHODS",
+    "solve",
+    "available_methods",
+    "__version__",
+]

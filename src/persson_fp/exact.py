@@ -1,0 +1,240 @@
+r"""Closed-form solutions of Persson's diffusion problem.
+
+Original theory (``eq:P0_solution``, ``eq:Area_Persson``): with tau = V(zeta),
+
+.. math::
+
+    P_0(p,\zeta) = \rho(p;\bar p,\tau) - \rho(p;-\bar p,\tau), \qquad
+    A^* = \mathrm{erf}\big(\bar p/\sqrt{2\tau}\big),
+
+and an atom :math:`1 - A^*` at p = 0 (``eq:PDF_piecewise_explicit``).
+Fudge-factor theories (``eq:new_B2``): the same formulas evaluated at the
+effective variance :math:`\tau = \int S\,dV` (DESIGN §1,
+:mod:`persson_fp.effective`).  Everything is vectorised over magnifications
+and loads: arrays have shape ``(n_zeta, n_loads)``, and a scalar zeta or a
+scalar load drops its axis.
+
+This module imports no solver.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.integrate import quad_vec
+from scipy.special import erf, erfc
+
+from ._validate import as_float_array, as_positive_scalar
+from .problem import ContactProblem
+
+__all__ = ["ExactSolution", "exact", "image_pdf", "variance_closed_form", "pressure_spectrum", "elastic_energy"]
+
+_SQRT2PI = np.sqrt(2.0 * np.pi)
+
+
+def image_pdf(p, p_bar, tau) -> np.ndarray:
+    r"""Image solution :math:`\rho(p;\bar p,\tau) - \rho(p;-\bar p,\tau)` for p > 0 (0 for p <= 0).
+
+    Written as :math:`\rho(p;\bar p,\tau)\,(1 - e^{-2p\bar p/\tau})` with ``-expm1``, so it
+    keeps full relative accuracy near p = 0 and for tiny tau and never overflows.
+    All arguments broadcast; ``tau`` must be > 0 (pressure^2).
+    """
+    p, p_bar, tau = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (p, p_bar, tau)))
+    pos = p > 0
+    pp = np.where(pos, p, 0.0)
+    with np.errstate(under="ignore"):
+        gauss = np.exp(-((pp - p_bar) ** 2) / (2.0 * tau)) / (_SQRT2PI * np.sqrt(tau))
+        out = gauss * -np.expm1(-2.0 * pp * p_bar / tau)
+    return np.where(pos, out, 0.0)
+
+
+def variance_closed_form(p_bar, tau) -> np.ndarray:
+    r"""Var(p) over the whole interface, atom included: :math:`\int_0^\tau A^*(t)\,dt`.
+
+    Closed form of ``eq:variance_p_form1`` in the effective variance (for the
+    original theory tau = V):
+
+    .. math::  \mathrm{Var} = \tau\,\mathrm{erf}(x) - \bar p^2\,\mathrm{erfc}(x)
+                              + \bar p\sqrt{2\tau/\pi}\,e^{-x^2}, \quad x = \bar p/\sqrt{2\tau}.
+    """
+    p_bar, tau = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(tau, dtype=float))
+    with np.errstate(divide="ignore", under="ignore"):
+        x = np.divide(p_bar, np.sqrt(2.0 * tau), out=np.full(p_bar.shape, np.inf), where=tau > 0)
+        out = tau * erf(x) - p_bar**2 * erfc(x) + p_bar * np.sqrt(2.0 * tau / np.pi) * np.exp(-x * x)
+    return np.where(tau > 0, out, 0.0)
+
+
+class ExactSolution:
+    """The exact solution of a :class:`ContactProblem` at magnification(s) ``zeta``.
+
+    Attributes (shape ``(n_zeta, n_loads)``, scalar axes dropped)
+    ----------
+    zeta : magnifications (dimensionless)
+    V : complete-contact variance V(zeta) (pressure^2), shape ``(n_zeta,)``
+    tau : effective variance (pressure^2); equals V without a fudge factor
+    contact_area : A* = erf(p_bar / sqrt(2 tau)) (``eq:Area_Persson``)
+    atom : 1 - A*, the probability of p = 0, computed as erfc (``eq:PDF_piecewise_explicit``)
+    area_asymptote : sqrt(2/pi) p_bar / sqrt(tau), the small-load limit (``eq:Asymptote_1``)
+    variance : Var(p) (pressure^2), ``eq:variance_p_form1`` (int A* dtau with a fudge factor)
+    second_moment : <p^2> = Var + p_bar^2 (pressure^2)
+    """
+
+    def __init__(self, problem: ContactProblem, zeta=None):
+        self.problem = problem
+        z = problem.zeta_max if zeta is None else zeta
+        z = as_float_array(z, "zeta")
+        if z.ndim > 1:
+            raise ValueError(f"zeta must be a scalar or a 1-D array, got shape {z.shape}")
+        self._scalar_zeta = z.ndim == 0
+        self._zeta = np.atleast_1d(problem.psd.check_zeta(z))
+        self._V = np.atleast_1d(problem.V(self._zeta))
+        self._tau = problem.tau_of_V(self._V)  # (n_zeta, n_loads)
+        pb = problem.p_bar[None, :]
+        with np.errstate(divide="ignore"):
+            x = np.divide(pb, np.sqrt(2.0 * self._tau), out=np.full(self._tau.shape, np.inf), where=self._tau > 0)
+        self._x = x
+        self._A = erf(x)
+        self._atom = erfc(x)
+
+    def _shape(self, a):
+        if self.problem.scalar_load:
+            a = a[..., 0]
+        if self._scalar_zeta:
+            a = a[0]
+        return a if np.ndim(a) else float(a)
+
+    @property
+    def zeta(self):
+        return self._zeta[0] if self._scalar_zeta else self._zeta.copy()
+
+    @property
+    def p_bar(self):
+        return self.problem.p_bar[0] if self.problem.scalar_load else self.problem.p_bar.copy()
+
+    @property
+    def V(self):
+        return self._V[0] if self._scalar_zeta else self._V.copy()
+
+    @property
+    def tau(self):
+        return self._shape(self._tau)
+
+    @property
+    def contact_area(self):
+        return self._shape(self._A)
+
+    @property
+    def atom(self):
+        return self._shape(self._atom)
+
+    @property
+    def area_asymptote(self):
+        with np.errstate(divide="ignore"):
+            return self._shape(2.0 / np.sqrt(np.pi) * self._x)
+
+    @property
+    def variance(self):
+        return self._shape(variance_closed_form(self.problem.p_bar[None, :], self._tau))
+
+    @property
+    def second_moment(self):
+        return self._shape(variance_closed_form(self.problem.p_bar[None, :], self._tau) + self.problem.p_bar**2)
+
+    def pdf(self, p) -> np.ndarray:
+        """P0(p) (1/pressure) of the continuous part, ``eq:P0_solution`` at tau.
+
+        Returns shape ``(n_zeta, n_loads) + p.shape`` with scalar zeta/load axes
+        dropped.  At zeta = 1 P0 is a delta function: a ``ValueError`` says so.
+        """
+        p = as_float_array(p, "p")
+        if np.any(self._tau <= 0):
+            raise ValueError("P0 at zeta = 1 is the delta function delta(p - p_bar); ask for zeta > 1")
+        pb = self.problem.p_bar[None, :]
+        ext = (Ellipsis,) + (None,) * p.ndim
+        out = image_pdf(p, pb[ext], self._tau[ext])
+        if self.problem.scalar_load:
+            out = out[:, 0]
+        if self._scalar_zeta:
+            out = out[0]
+        return out
+
+    def cdf_contact(self, p) -> np.ndarray:
+        r""":math:`\int_0^p P_0\,dp'` (dimensionless), same shape rules as :meth:`pdf`."""
+        p = np.maximum(as_float_array(p, "p"), 0.0)
+        if np.any(self._tau <= 0):
+            raise ValueError("P0 at zeta = 1 is the delta function delta(p - p_bar); ask for zeta > 1")
+        pb = self.problem.p_bar[None, :]
+        ext = (Ellipsis,) + (None,) * p.ndim
+        s = np.sqrt(2.0 * self._tau)[ext]
+        # int_0^p [rho(p';pb) - rho(p';-pb)] dp' = [erf((p-pb)/s) + erf(pb/s)]/2 - [erf((p+pb)/s) - erf(pb/s)]/2
+        out = 0.5 * (erf((p - pb[ext]) / s) - erf((p + pb[ext]) / s)) + erf(pb[ext] / s)
+        if self.problem.scalar_load:
+            out = out[:, 0]
+        if self._scalar_zeta:
+            out = out[0]
+        return out
+
+
+def exact(problem: ContactProblem, zeta=None) -> ExactSolution:
+    """The exact solution of ``problem`` at ``zeta`` (scalar or 1-D, default ``zeta_max``).
+
+    See :class:`ExactSolution`.  Microseconds per (zeta, load) once the
+    fudge factor's effective-variance map is cached.
+    """
+    return ExactSolution(problem, zeta)
+
+
+def pressure_spectrum(problem: ContactProblem, q, A_n: float = 1.0) -> np.ndarray:
+    r""":math:`|\tilde p(q)|^2` of ``eq:Pf_prime`` (pressure^2 length^4 / (2 pi)^2 units of the seed's FT).
+
+    .. math::  |\tilde p(q)|^2 = \Big(\frac{E^*}{4\pi}\Big)^2 A_n\, q^2 C(q)\, A^*(\bar p, q/q_l)\, S(A^*)
+
+    with S = 1 in the original theory.  ``A_n`` is the nominal area (length^2).
+    Returns shape ``q.shape + (n_loads,)`` (load axis dropped for a scalar load).
+    """
+    A_n = as_positive_scalar(A_n, "A_n")
+    q = as_float_array(q, "q")
+    psd = problem.psd
+    z = psd.check_zeta(q / psd.q_l, "q / q_l")
+    tau = problem.tau(z)
+    A = erf(problem.p_bar / np.sqrt(2.0 * tau))
+    S = problem.fudge.S(A)
+    out = (problem.E_star / (4.0 * np.pi)) ** 2 * A_n * (q**2 * psd.C(q))[..., None] * A * S
+    return out[..., 0] if problem.scalar_load else out
+
+
+def elastic_energy(problem: ContactProblem, zeta=None, epsrel: float = 1e-10) -> np.ndarray:
+    r"""Elastic energy per nominal area :math:`U_{el}/A_n` (pressure x length), ``eq:Uel_original``.
+
+    .. math::  \frac{U_{el}}{A_n} = \frac{\pi E^*}{2}\int_{q_l}^{\zeta q_l}
+               q^2 C(q)\, A^*(\bar p, q/q_l)\, S(A^*)\,dq
+
+    (the seed writes the total energy with the factor :math:`A_n`; multiply by
+    it for a finite patch).  S = 1 in the original theory; the corrected models
+    carry S(A*) as in Yang & Persson (2008).  A* comes from the model in use at
+    each q.  Adaptive quadrature in ln q (``scipy.integrate.quad_vec``), split at
+    the roll-off, vectorised over loads, relative tolerance ``epsrel``.
+    """
+    psd = problem.psd
+    zeta = psd.zeta_max if zeta is None else float(psd.check_zeta(zeta))
+    lo, hi = np.log(psd.q_l), np.log(zeta * psd.q_l)
+    if hi <= lo:
+        out = np.zeros(problem.n_loads)
+        return out[0] if problem.scalar_load else out
+
+    def integrand(t):
+        q = np.exp(t)
+        z = min(max(q / psd.q_l, 1.0), psd.zeta_max)
+        tau = problem.tau(np.array(z))
+        with np.errstate(divide="ignore"):
+            A = erf(np.divide(problem.p_bar, np.sqrt(2.0 * tau), out=np.full(tau.shape, np.inf), where=tau > 0))
+        return q**3 * psd.C(q) * A * problem.fudge.S(A)
+
+    pts = []
+    q_r = getattr(psd, "q_r", None)
+    if q_r is not None and lo < np.log(q_r) < hi:
+        pts.append(np.log(q_r))
+    if hasattr(psd, "q"):  # tabulated: the kinks of the interpolant
+        pts.extend(np.log(psd.q[(psd.q > np.exp(lo)) & (psd.q < np.exp(hi))]).tolist())
+    val, _err = quad_vec(integrand, lo, hi, epsrel=epsrel, epsabs=0.0, points=pts or None, limit=2000)
+    out = 0.5 * np.pi * problem.E_star * np.asarray(val)
+    return out[0] if problem.scalar_load else out

@@ -1,0 +1,128 @@
+r"""The contact problem: spectrum, modulus, load(s) and fudge factor, validated.
+
+:class:`ContactProblem` is what every solver and :func:`persson_fp.exact`
+take.  It knows the diffusion coefficient of ``E:diffusion_equ`` /
+``eq:new_B2`` through V(zeta) and dV/dzeta, the effective variance tau(zeta)
+of the fudge-factor theory, and how large a pressure domain must be.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import fudge as _fudge
+from ._validate import as_float_array, as_positive_scalar
+from .effective import effective_variance
+from .spectrum import PSD, SelfAffinePSD
+
+__all__ = ["ContactProblem"]
+
+
+class ContactProblem:
+    """Persson's diffusion problem for one surface, one modulus and one or many loads.
+
+    Parameters
+    ----------
+    psd : PSD
+        The surface spectrum (:class:`~persson_fp.SelfAffinePSD` or
+        :class:`~persson_fp.TabulatedPSD`); fixes ``zeta_max = q_s / q_l``.
+    E_star : float, pressure
+        Plane-strain modulus E/(1 - nu^2), > 0.
+    p_bar : float or 1-D array, pressure
+        Nominal pressure(s), each > 0 and finite.  An array is solved as a
+        batch by every method (results get a trailing load axis).
+    fudge : None, str, FudgeFactor or callable
+        ``None`` (Persson 2001), ``"YP08"``, ``"WM17"``, ``"Xu24"``, a
+        :class:`~persson_fp.fudge.FudgeFactor` instance, or any callable
+        ``S(A)`` that is finite and > 0 on [0, 1] (``eq:new_B2``).
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter and its allowed range.
+    """
+
+    def __init__(self, psd: PSD, E_star: float = 1.0, p_bar=None, fudge=None):
+        if not isinstance(psd, PSD):
+            raise ValueError(f"psd must be a SelfAffinePSD or TabulatedPSD, got {type(psd).__name__}")
+        self.psd = psd
+        self.E_star = as_positive_scalar(E_star, "E_star")
+        if p_bar is None:
+            raise ValueError("p_bar (nominal pressure, > 0) is required")
+        pb = as_float_array(p_bar, "p_bar")
+        if pb.ndim > 1:
+            raise ValueError(f"p_bar must be a scalar or a 1-D array, got shape {pb.shape}")
+        if pb.size == 0:
+            raise ValueError("p_bar must hold at least one load")
+        if np.any(pb <= 0):
+            raise ValueError(f"p_bar must be > 0 (every load), got {pb[pb <= 0].ravel()[0]!r}")
+        self.scalar_load = pb.ndim == 0
+        self.p_bar = np.atleast_1d(pb).astype(float)
+        self.fudge = _fudge.resolve(fudge)
+
+    # -- construction helpers ---------------------------------------------------
+    @classmethod
+    def reference(cls, fudge=None, p_bar_ratio=0.5, H: float = 0.8, zeta_max: float = 128.0):
+        """DESIGN's reference problem: H = 0.8, q_l = 1, q_r = 2, q_s = ``zeta_max``,
+        rms slope 0.1, E* = 1 and p_bar = ``p_bar_ratio`` * sqrt(V(zeta_max))."""
+        psd = SelfAffinePSD.from_rms_slope(0.1, H=H, q_l=1.0, q_r=2.0, q_s=zeta_max)
+        ratio = as_float_array(p_bar_ratio, "p_bar_ratio")
+        return cls(psd, E_star=1.0, p_bar=ratio * np.sqrt(psd.V(E_star=1.0)), fudge=fudge)
+
+    def with_loads(self, p_bar) -> "ContactProblem":
+        """The same surface and fudge factor with other load(s)."""
+        return ContactProblem(self.psd, self.E_star, p_bar, self.fudge)
+
+    def __repr__(self):
+        loads = f"{self.p_bar[0]:.6g}" if self.scalar_load else f"<{self.p_bar.size} loads>"
+        return f"ContactProblem({self.psd!r}, E_star={self.E_star:.6g}, p_bar={loads}, fudge={self.fudge.name!r})"
+
+    # -- coefficients ---------------------------------------------------------------
+    @property
+    def zeta_max(self) -> float:
+        """Largest magnification q_s / q_l."""
+        return self.psd.zeta_max
+
+    @property
+    def n_loads(self) -> int:
+        return self.p_bar.size
+
+    def V(self, zeta=None) -> np.ndarray:
+        """Complete-contact pressure variance V(zeta) (pressure^2), ``eq:Vp_closed_form``."""
+        return self.psd.V(zeta, self.E_star)
+
+    def dV_dzeta(self, zeta=None) -> np.ndarray:
+        """dV/dzeta (pressure^2), ``eq:dVdxi``; B2 of the original theory (``eq:B2_xi_1``)."""
+        return self.psd.dV_dzeta(zeta, self.E_star)
+
+    def tau_of_V(self, V) -> np.ndarray:
+        """Effective variance tau (pressure^2) at complete-contact variance(s) ``V``.
+
+        Returns shape ``V.shape + (n_loads,)``.  For the original theory tau = V;
+        for Xu24 the closed form tau = g(A*) V; otherwise the cached ODE of
+        :mod:`persson_fp.effective`.
+        """
+        V = np.asarray(V, dtype=float)[..., None]
+        if isinstance(self.fudge, _fudge.NoFudge):
+            return np.broadcast_to(V, V.shape[:-1] + (self.n_loads,)).copy()
+        if isinstance(self.fudge, _fudge.Xu24):
+            A = self.fudge.area(self.p_bar, V)
+            return self.fudge.g(A) * V
+        return effective_variance(self.fudge).tau(self.p_bar, V)
+
+    def tau(self, zeta=None) -> np.ndarray:
+        """Effective variance tau(zeta) = int S dV (pressure^2), shape ``zeta.shape + (n_loads,)``."""
+        return self.tau_of_V(self.V(zeta))
+
+    def B2(self, zeta, A) -> np.ndarray:
+        """Diffusion coefficient B2 = S(A*) dV/dzeta (``eq:new_B2``) for the current area(s) ``A``."""
+        return self.fudge.S(A) * self.dV_dzeta(zeta)
+
+    def p_max(self, k: float = 10.0) -> float:
+        """Far end of a pressure grid: max(p_bar) + k sqrt(tau(zeta_max)) (pressure).
+
+        With k = 10 the image solution there is below exp(-50) of its peak.
+        """
+        k = as_positive_scalar(k, "k")
+        tau = self.tau(self.zeta_max)
+        return float(np.max(self.p_bar + k * np.sqrt(tau)))

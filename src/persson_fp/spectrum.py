@@ -1,0 +1,307 @@
+r"""Power spectral densities of isotropic rough surfaces and their moments.
+
+The spectrum enters Persson's theory only through the complete-contact
+pressure variance (seed, Appendix B)
+
+.. math::
+
+    V(\zeta) = \frac{\pi}{2} E^{*2} \int_{q_l}^{\zeta q_l} q^3 C(q)\,dq
+             = \tfrac14 E^{*2} \langle|\nabla h|^2\rangle(\zeta)
+    \qquad \text{(eq:V_equ, eq:VV_relation)}
+
+and its derivative :math:`dV/d\zeta = \frac{\pi}{2} E^{*2} q_l\, q^3 C(q)`
+at :math:`q = \zeta q_l` (``eq:dVdxi``).  ``C(q)`` follows the convention
+:math:`\langle h^2\rangle = \int d^2q\, C(q) = 2\pi \int q C(q)\,dq`
+(``eq:variance_h_continuous``).
+
+Units: wavenumbers in 1/length, ``C`` in length^4, heights in length,
+slopes dimensionless, ``E_star`` and ``V`` in pressure and pressure^2.
+This module imports no solver.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._validate import as_float_array, as_positive_scalar, check_in_range
+
+__all__ = ["PSD", "SelfAffinePSD", "TabulatedPSD", "powint"]
+
+
+def powint(a, b, e):
+    r"""Return :math:`\int_a^b q^{e-1}\,dq = (b^e - a^e)/e`, continuous at ``e = 0``.
+
+    Written as :math:`a^e\,\mathrm{expm1}(e \ln(b/a))/e`, which keeps full relative
+    accuracy as ``e -> 0`` (where it tends to :math:`\ln(b/a)`): this is what makes
+    the closed forms of the spectrum moments valid at H = 0 and H = 1.
+    """
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    e = np.asarray(e, dtype=float)
+    log_ratio = np.log(b / a)
+    x = e * log_ratio
+    e_safe = np.where(e == 0.0, 1.0, e)
+    val = np.power(a, e) * np.expm1(x) / e_safe
+    return np.where(e == 0.0, log_ratio, val)
+
+
+class PSD:
+    """Base class of isotropic spectra on ``[q_l, q_s]``.
+
+    Subclasses set ``q_l`` (lower cut-off, 1/length; the magnification is
+    ``zeta = q / q_l``) and ``q_s`` (upper cut-off, 1/length) and implement
+    :meth:`C` and :meth:`moment`; everything else (heights, slopes, pressure
+    variance) is derived here.
+    """
+
+    q_l: float
+    q_s: float
+
+    @property
+    def zeta_max(self) -> float:
+        """Largest magnification ``q_s / q_l`` (dimensionless)."""
+        return self.q_s / self.q_l
+
+    def check_zeta(self, zeta, name: str = "zeta") -> np.ndarray:
+        """Validate magnifications: finite and in ``[1, zeta_max]``."""
+        return check_in_range(zeta, name, 1.0, self.zeta_max)
+
+    def C(self, q) -> np.ndarray:  # pragma: no cover - abstract
+        """Spectrum C(q) (length^4); zero outside ``[q_l, q_s]``."""
+        raise NotImplementedError
+
+    def moment(self, k: float, zeta=None) -> np.ndarray:  # pragma: no cover - abstract
+        r""":math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq` (length^(k+5))."""
+        raise NotImplementedError
+
+    # -- derived quantities -------------------------------------------------
+    def _zeta(self, zeta):
+        return self.zeta_max if zeta is None else self.check_zeta(zeta)
+
+    def h2(self, zeta=None) -> np.ndarray:
+        r"""Mean-square height :math:`\langle h^2\rangle(\zeta)` (length^2), ``eq:Vh_closed_form``."""
+        return 2.0 * np.pi * self.moment(1, zeta)
+
+    def grad2(self, zeta=None) -> np.ndarray:
+        r"""Mean-square slope :math:`\langle|\nabla h|^2\rangle(\zeta)`, ``eq:V_gradient``."""
+        return 2.0 * np.pi * self.moment(3, zeta)
+
+    @property
+    def rms_height(self) -> float:
+        """Root-mean-square height over the whole band (length)."""
+        return float(np.sqrt(self.h2()))
+
+    @property
+    def rms_slope(self) -> float:
+        """Root-mean-square slope over the whole band (dimensionless)."""
+        return float(np.sqrt(self.grad2()))
+
+    def V(self, zeta=None, E_star: float = 1.0) -> np.ndarray:
+        r"""Complete-contact pressure variance :math:`V(\zeta)` (pressure^2).
+
+        ``eq:Vp_closed_form`` / ``eq:VV_relation``:
+        :math:`V = \tfrac14 E^{*2}\langle|\nabla h|^2\rangle`.
+        """
+        E_star = as_positive_scalar(E_star, "E_star")
+        return 0.25 * E_star**2 * self.grad2(zeta)
+
+    def dV_dzeta(self, zeta=None, E_star: float = 1.0) -> np.ndarray:
+        r""":math:`dV/d\zeta = \frac{\pi}{2} E^{*2} q_l q^3 C(q)`, :math:`q = \zeta q_l` (``eq:dVdxi``)."""
+        E_star = as_positive_scalar(E_star, "E_star")
+        z = np.asarray(self._zeta(zeta), dtype=float)
+        q = z * self.q_l
+        return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(q)
+
+    def elastic_energy_complete(self, zeta=None, E_star: float = 1.0) -> np.ndarray:
+        r"""Elastic energy per nominal area at complete contact (pressure x length).
+
+        ``eq:Uel_complete_2`` divided by :math:`A_n`:
+        :math:`U_{el}/A_n = \frac{\pi}{2} E^* \int_{q_l}^{\zeta q_l} q^2 C(q)\,dq`.
+        """
+        E_star = as_positive_scalar(E_star, "E_star")
+        return 0.5 * np.pi * E_star * self.moment(2, zeta)
+
+
+class SelfAffinePSD(PSD):
+    r"""Self-affine spectrum with roll-off, ``E:PSD`` of the seed.
+
+    .. math::
+
+        C(q) = \begin{cases} C_0 q_r^{-2(1+H)} & q_l \le q < q_r \\
+                             C_0 q^{-2(1+H)}   & q_r \le q \le q_s \\
+                             0 & \text{elsewhere} \end{cases}
+
+    Parameters
+    ----------
+    C0 : float, length^(2-2H)
+        Prefactor (> 0, finite).  Use :meth:`from_rms_slope` or
+        :meth:`from_rms_height` when the slope or the height is what you know.
+    H : float, dimensionless
+        Hurst exponent in [0, 1] (the closed forms take their logarithmic
+        limits at H = 0 and H = 1).
+    q_l, q_r, q_s : float, 1/length
+        Lower cut-off, roll-off and upper cut-off, ``0 < q_l <= q_r <= q_s``
+        (``q_r = q_l`` means no roll-off).
+    """
+
+    def __init__(self, C0: float, H: float, q_l: float, q_r: float, q_s: float):
+        C0 = as_positive_scalar(C0, "C0")
+        H = float(check_in_range(H, "H", 0.0, 1.0, rtol=0.0))
+        q_l = as_positive_scalar(q_l, "q_l")
+        q_r = as_positive_scalar(q_r, "q_r")
+        q_s = as_positive_scalar(q_s, "q_s")
+        if not q_l <= q_r:
+            raise ValueError(f"q_r must lie in [q_l, q_s] = [{q_l!r}, {q_s!r}], got {q_r!r}")
+        if not q_r <= q_s:
+            raise ValueError(f"q_s must be >= q_r = {q_r!r}, got {q_s!r}")
+        if q_s == q_l:
+            raise ValueError(f"q_s must be > q_l = {q_l!r} (an empty band has no roughness)")
+        self.C0 = C0
+        self.H = H
+        self.q_l = q_l
+        self.q_r = q_r
+        self.q_s = q_s
+
+    def __repr__(self):
+        return f"SelfAffinePSD(C0={self.C0!r}, H={self.H!r}, q_l={self.q_l!r}, q_r={self.q_r!r}, q_s={self.q_s!r})"
+
+    @classmethod
+    def from_rms_slope(cls, rms_slope: float, H: float, q_l: float, q_r: float, q_s: float):
+        """Spectrum whose rms slope over ``[q_l, q_s]`` is ``rms_slope`` (dimensionless, > 0)."""
+        rms_slope = as_positive_scalar(rms_slope, "rms_slope")
+        unit = cls(1.0, H, q_l, q_r, q_s)
+        return cls(rms_slope**2 / unit.grad2(), H, q_l, q_r, q_s)
+
+    @classmethod
+    def from_rms_height(cls, rms_height: float, H: float, q_l: float, q_r: float, q_s: float):
+        """Spectrum whose rms height over ``[q_l, q_s]`` is ``rms_height`` (length, > 0)."""
+        rms_height = as_positive_scalar(rms_height, "rms_height")
+        unit = cls(1.0, H, q_l, q_r, q_s)
+        return cls(rms_height**2 / unit.h2(), H, q_l, q_r, q_s)
+
+    @property
+    def zeta_r(self) -> float:
+        """Magnification of the roll-off, ``q_r / q_l``."""
+        return self.q_r / self.q_l
+
+    def C(self, q) -> np.ndarray:
+        q = as_float_array(q, "q")
+        plateau = self.C0 * self.q_r ** (-2.0 * (1.0 + self.H))
+        with np.errstate(divide="ignore"):
+            tail = self.C0 * np.power(np.where(q > 0, q, 1.0), -2.0 * (1.0 + self.H))
+        inside = (q >= self.q_l) & (q <= self.q_s)
+        return np.where(inside, np.where(q < self.q_r, plateau, tail), 0.0)
+
+    def moment(self, k: float, zeta=None) -> np.ndarray:
+        r""":math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq` in closed form (``eq:Vh_closed_form``,
+        ``eq:Vp_closed_form`` for k = 1, 3), exact also in the logarithmic limits."""
+        z = np.asarray(self._zeta(zeta), dtype=float)
+        q_hi = z * self.q_l
+        q_mid = np.minimum(q_hi, self.q_r)
+        plateau = self.C0 * self.q_r ** (-2.0 * (1.0 + self.H)) * powint(self.q_l, q_mid, k + 1.0)
+        tail_hi = np.maximum(q_hi, self.q_r)
+        tail = self.C0 * powint(self.q_r, tail_hi, k - 1.0 - 2.0 * self.H)
+        return plateau + tail
+
+
+class TabulatedPSD(PSD):
+    r"""A measured isotropic spectrum given at points ``(q_i, C_i)``.
+
+    Between the points ``C`` is interpolated linearly in log-log (a power law
+    per interval), and every moment is the exact integral of that interpolant,
+    so a spectrum that *is* piecewise power law (like :class:`SelfAffinePSD`)
+    is reproduced to round-off.
+
+    Parameters
+    ----------
+    q : array_like, 1/length
+        Strictly increasing wavenumbers > 0 (at least two).
+    C : array_like, length^4
+        Spectrum values > 0 at ``q`` (same convention as ``E:PSD``).
+    q_l, q_s : float, optional
+        Band limits inside ``[q[0], q[-1]]``; default the table's ends.
+    """
+
+    def __init__(self, q, C, q_l: float | None = None, q_s: float | None = None):
+        q = as_float_array(q, "q").ravel()
+        C = as_float_array(C, "C").ravel()
+        if q.size < 2:
+            raise ValueError(f"q must hold at least 2 points, got {q.size}")
+        if C.shape != q.shape:
+            raise ValueError(f"C must have the same length as q ({q.size}), got {C.size}")
+        if np.any(q <= 0):
+            raise ValueError(f"q must be > 0 everywhere, got {q[q <= 0][0]!r}")
+        if np.any(np.diff(q) <= 0):
+            i = int(np.argmax(np.diff(q) <= 0))
+            raise ValueError(f"q must be strictly increasing; q[{i + 1}] = {q[i + 1]!r} <= q[{i}] = {q[i]!r}")
+        if np.any(C <= 0):
+            i = int(np.argmax(C <= 0))
+            raise ValueError(f"C must be > 0 everywhere (log-log interpolation); C[{i}] = {C[i]!r}")
+        q_l = float(q[0]) if q_l is None else float(check_in_range(q_l, "q_l", q[0], q[-1], rtol=0.0))
+        q_s = float(q[-1]) if q_s is None else float(check_in_range(q_s, "q_s", q[0], q[-1], rtol=0.0))
+        if not q_s > q_l:
+            raise ValueError(f"q_s must be > q_l = {q_l!r}, got {q_s!r}")
+        self.q = q
+        self.values = C
+        self.q_l = q_l
+        self.q_s = q_s
+
+    def __repr__(self):
+        return f"TabulatedPSD(<{self.q.size} points>, q_l={self.q_l!r}, q_s={self.q_s!r})"
+
+    @classmethod
+    def from_csv(cls, path, q_column: str = "q", C_column: str = "C", **kwargs):
+        """Read a spectrum from a CSV file with a header row naming ``q_column`` and ``C_column``.
+
+        Rows with non-finite, zero or negative values raise a ``ValueError`` naming the line.
+        """
+        import csv
+
+        qs, Cs = [], []
+        with open(path, newline="") as fh:
+            reader = csv.DictReader(fh)
+            if reader.fieldnames is None or q_column not in reader.fieldnames or C_column not in reader.fieldnames:
+                raise ValueError(
+                    f"{path}: header must name columns {q_column!r} and {C_column!r}, got {reader.fieldnames}"
+                )
+            for row in reader:
+                line = reader.line_num
+                try:
+                    qv, Cv = float(row[q_column]), float(row[C_column])
+                except (TypeError, ValueError):
+                    raise ValueError(f"{path}, line {line}: q and C must be numbers, got {row!r}") from None
+                if not (np.isfinite(qv) and np.isfinite(Cv) and qv > 0 and Cv > 0):
+                    raise ValueError(f"{path}, line {line}: q and C must be finite and > 0, got q={qv}, C={Cv}")
+                qs.append(qv)
+                Cs.append(Cv)
+        return cls(np.array(qs), np.array(Cs), **kwargs)
+
+    def _slopes(self):
+        return np.diff(np.log(self.values)) / np.diff(np.log(self.q))
+
+    def C(self, q) -> np.ndarray:
+        q = as_float_array(q, "q")
+        inside = (q >= self.q_l) & (q <= self.q_s)
+        qc = np.clip(q, self.q[0], self.q[-1])
+        logC = np.interp(np.log(qc), np.log(self.q), np.log(self.values))
+        return np.where(inside, np.exp(logC), 0.0)
+
+    def _segment_moment(self, k, i, q_lo, q_hi):
+        """Exact integral of q^k C over [q_lo, q_hi] inside table interval i."""
+        s = self._slopes()[i]
+        Ci = self.values[i] * (q_lo / self.q[i]) ** s
+        return Ci * q_lo ** (k + 1.0) * powint(1.0, q_hi / q_lo, k + 1.0 + s)
+
+    def moment(self, k: float, zeta=None) -> np.ndarray:
+        r"""Exact :math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq` of the log-log interpolant."""
+        z = np.asarray(self._zeta(zeta), dtype=float)
+        q_hi = z * self.q_l
+        # nodes of the band: q_l, the table points strictly inside, q_s
+        inner = self.q[(self.q > self.q_l) & (self.q < self.q_s)]
+        nodes = np.concatenate(([self.q_l], inner, [self.q_s]))
+        seg = np.clip(np.searchsorted(self.q, nodes[:-1], side="right") - 1, 0, self.q.size - 2)
+        full = self._segment_moment(k, seg, nodes[:-1], nodes[1:])
+        cum = np.concatenate(([0.0], np.cumsum(full)))
+        j = np.clip(np.searchsorted(nodes, q_hi, side="right") - 1, 0, nodes.size - 2)
+        partial = self._segment_moment(k, seg[j], nodes[j], np.maximum(q_hi, nodes[j]))
+        return cum[j] + partial
