@@ -54,5 +54,5 @@ def check_in_range(a, name: str, lo: float, hi: float, *, rtol: float = 1e-12) -
     slack_hi = rtol * max(abs(hi), 1.0)
     if np.any(a < lo - slack_lo) or np.any(a > hi + slack_hi):
         bad = a[(a < lo - slack_lo) | (a > hi + slack_hi)].ravel()[0]
-        raise ValueError(f"{name} must lie in [{lo:.17g}, {hi:.17g}], got {bad!r}")
+        raise ValueError(f"{name} must lie in [{lo:.17g}, {hi:.17g}], got {float(bad)!r}")
     return np.clip(a, lo, hi)

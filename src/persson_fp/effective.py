@@ -73,6 +73,8 @@ class EffectiveVariance:
         v = np.asarray(v, dtype=float)
         if self.identity:
             return v.copy()
+        shape = v.shape
+        v = v.ravel()
         out = self.S1 * v
         mid = (v > self.v0) & (v <= _V_MAX)
         if np.any(mid):
@@ -80,7 +82,7 @@ class EffectiveVariance:
         hi = v > _V_MAX
         if np.any(hi):
             out[hi] = self.u_end + self.slope_end * (v[hi] - _V_MAX)
-        return out
+        return out.reshape(shape)
 
     def tau(self, p_bar, V) -> np.ndarray:
         """tau(p_bar, V), broadcast over both (pressure^2)."""

@@ -32,8 +32,8 @@ This module imports no solver.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from scipy.special import erfinv
@@ -193,6 +193,7 @@ class Xu24(FudgeFactor):
 
         p_bar, V = np.broadcast_arrays(np.asarray(p_bar, float), np.asarray(V, float))
         x0 = np.divide(p_bar, np.sqrt(2.0 * V), out=np.full(p_bar.shape, np.inf), where=V > 0)
+        x0 = np.minimum(x0, 40.0)  # erf(40 / sqrt(g)) == 1 exactly; keeps exp(-x^2) x finite
         lo = np.zeros(p_bar.shape)
         hi = np.ones(p_bar.shape)
         # f(A) = A - erf(x0 / sqrt(g(A))) is strictly increasing: bisection is safe

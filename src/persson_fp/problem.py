@@ -69,7 +69,7 @@ class ContactProblem:
         ratio = as_float_array(p_bar_ratio, "p_bar_ratio")
         return cls(psd, E_star=1.0, p_bar=ratio * np.sqrt(psd.V(E_star=1.0)), fudge=fudge)
 
-    def with_loads(self, p_bar) -> "ContactProblem":
+    def with_loads(self, p_bar) -> ContactProblem:
         """The same surface and fudge factor with other load(s)."""
         return ContactProblem(self.psd, self.E_star, p_bar, self.fudge)
 

@@ -181,9 +181,14 @@ class Solution:
         self.info["checks"] = checks
         msgs = []
         if checks["negative_P0"]:
-            msgs.append(f"P0 has negative values down to {checks['min_P0']:.3e} (oscillations: refine or use an L-stable scheme)")
+            msgs.append(
+                f"P0 has negative values down to {checks['min_P0']:.3e} "
+                "(oscillations: refine or use an L-stable scheme)"
+            )
         if not checks["area_monotone"]:
-            msgs.append(f"A* increases by up to {checks['area_increase']:.3e} between stations (contact can only be lost)")
+            msgs.append(
+                f"A* increases by up to {checks['area_increase']:.3e} between stations (contact can only be lost)"
+            )
         if msgs:
             self.info.setdefault("warnings", []).extend(msgs)
             warnings.warn(f"{self.method}: " + "; ".join(msgs), RuntimeWarning, stacklevel=3)

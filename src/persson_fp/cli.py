@@ -1,0 +1,343 @@
+"""The ``persson-fp`` command: reports, solves and contact-area curves.
+
+It only wires the package together; bad arguments print one line and exit 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+from . import __version__
+from . import fudge as _fudge
+from .exact import elastic_energy, exact
+from .problem import ContactProblem
+from .spectrum import SelfAffinePSD, TabulatedPSD
+
+FUDGES = ["none", "YP08", "WM17", "Xu24"]
+
+DESCRIPTION = """\
+persson-fp: Persson's theory of elastic rough-surface contact as a diffusion (Fokker-Planck) problem.
+
+The contact-pressure PDF P0(p, zeta) obeys dP0/dzeta = 1/2 B2 d2P0/dp2 with an absorbing wall at p = 0;
+B2 = S(A*) dV/dzeta, S = 1 in Persson's original theory.  The default surface is DESIGN's reference:
+self-affine, H = 0.8, q_l = 1, q_r = 2, q_s = 128 (zeta_max = 128), rms slope 0.1, E* = 1,
+p_bar = 0.5 sqrt(V(zeta_max)).  Units: any consistent set (the defaults are dimensionless).
+
+commands:
+  report   (default) table of V, A*, Var(p), elastic energy for every fudge model, every installed
+           solver checked against the exact solution, and PNG figures
+  solve    solve one problem (your surface and loads) with a chosen method; CSV/JSON/PNG output
+  area     the contact-area curve A*(p_bar) for a range of loads, every fudge model (CSV + PNG)
+
+examples:
+  persson-fp
+  persson-fp report --H 0.3 --zeta-max 1000 --output results/
+  persson-fp solve --method fv --p-bar-ratio 0.1 0.5 2 --fudge YP08 --output sol.csv
+  persson-fp solve --psd-csv my_psd.csv --E-star 2.1e11 --p-bar 1e6 --method sines
+  persson-fp area --n-loads 200 --output area/
+"""
+
+
+class CLIError(Exception):
+    """A user error: printed as one line, exit code 2."""
+
+
+def _progress(i, n, label, stream=sys.stderr):
+    """A minimal progress bar on stderr, drawn only when stderr is a terminal."""
+    if not getattr(stream, "isatty", lambda: False)():
+        return
+    width = 24
+    done = int(width * i / max(n, 1))
+    stream.write(f"\r{label:<28} [{'#' * done}{'.' * (width - done)}] {i}/{n}")
+    if i >= n:
+        stream.write("\n")
+    stream.flush()
+
+
+def _add_problem_args(p: argparse.ArgumentParser):
+    g = p.add_argument_group("surface (self-affine PSD, eq. E:PSD) -- or --psd-csv")
+    g.add_argument("--H", type=float, default=0.8, help="Hurst exponent in [0, 1] (default 0.8)")
+    g.add_argument("--q-l", type=float, default=1.0, help="lower cut-off wavenumber q_l, 1/length (default 1)")
+    g.add_argument("--q-r", type=float, default=None, help="roll-off wavenumber q_r (default 2 q_l)")
+    g.add_argument("--zeta-max", type=float, default=128.0, help="magnification q_s/q_l (default 128)")
+    amp = g.add_mutually_exclusive_group()
+    amp.add_argument("--rms-slope", type=float, default=None, help="rms slope over the band (default 0.1)")
+    amp.add_argument("--rms-height", type=float, default=None, help="rms height over the band, length")
+    amp.add_argument("--C0", type=float, default=None, help="PSD prefactor C0, length^(2-2H)")
+    g.add_argument("--psd-csv", default=None, help="measured isotropic PSD: CSV with header columns q,C")
+    m = p.add_argument_group("contact")
+    m.add_argument("--E-star", type=float, default=1.0, help="plane-strain modulus E/(1-nu^2), pressure (default 1)")
+    lo = m.add_mutually_exclusive_group()
+    lo.add_argument("--p-bar", type=float, nargs="+", default=None, help="nominal pressure(s), pressure units")
+    lo.add_argument(
+        "--p-bar-ratio", type=float, nargs="+", default=None, help="load(s) as p_bar / sqrt(V(zeta_max)) (default 0.5)"
+    )
+    m.add_argument("--fudge", default="none", choices=FUDGES, help="fudge factor S(A*) (default none)")
+    m.add_argument("--gamma", type=float, default=None, help="gamma of the fudge model (default: the model's)")
+
+
+def _problem(args, fudge=None) -> ContactProblem:
+    if args.psd_csv:
+        if not os.path.exists(args.psd_csv):
+            raise CLIError(f"--psd-csv: no such file {args.psd_csv!r}")
+        psd = TabulatedPSD.from_csv(args.psd_csv)
+    else:
+        q_l = args.q_l
+        q_r = 2.0 * q_l if args.q_r is None else args.q_r
+        q_s = args.zeta_max * q_l
+        if args.C0 is not None:
+            psd = SelfAffinePSD(args.C0, args.H, q_l, q_r, q_s)
+        elif args.rms_height is not None:
+            psd = SelfAffinePSD.from_rms_height(args.rms_height, args.H, q_l, q_r, q_s)
+        else:
+            slope = 0.1 if args.rms_slope is None else args.rms_slope
+            psd = SelfAffinePSD.from_rms_slope(slope, args.H, q_l, q_r, q_s)
+    name = args.fudge if fudge is None else fudge
+    f = None
+    if name != "none":
+        cls = _fudge.MODELS[name]
+        f = cls() if args.gamma is None else cls(gamma=args.gamma)
+    if args.p_bar is not None:
+        p_bar = np.array(args.p_bar)
+    else:
+        ratio = np.array([0.5] if args.p_bar_ratio is None else args.p_bar_ratio)
+        if np.any(~np.isfinite(ratio)) or np.any(ratio <= 0):
+            raise CLIError("--p-bar-ratio must be > 0 and finite")
+        p_bar = ratio * np.sqrt(psd.V(E_star=args.E_star))
+    return ContactProblem(psd, args.E_star, p_bar[0] if p_bar.size == 1 else p_bar, f)
+
+
+def _outdir(path) -> str:
+    os.makedirs(path, exist_ok=True)
+    return path
+
+
+# -- report ------------------------------------------------------------------------------------------
+def cmd_report(args) -> int:
+    from . import plotting
+    from .solvers import available_methods, solve
+
+    out = _outdir(args.output)
+    base = _problem(args)
+    psd = base.psd
+    V = float(base.V())
+    print(f"persson-fp {__version__} -- report")
+    print(f"surface: {psd!r}")
+    print(f"E* = {base.E_star:.6g}, zeta_max = {base.zeta_max:.6g}, V(zeta_max) = {V:.6e}, sqrt(V) = {np.sqrt(V):.6e}")
+    print(f"rms slope = {psd.rms_slope:.6g}, rms height = {psd.rms_height:.6g}")
+    print()
+    header = f"{'fudge':<6} {'p_bar':>11} {'p_bar/sqrtV':>11} {'A*':>12} {'Var(p)':>12} {'U_el/A_n':>12} {'tau/V':>9}"
+    print("Exact solution at zeta_max (eq:Area_Persson, eq:variance_p_form1, eq:Uel_original):")
+    print(header)
+    print("-" * len(header))
+    for name in FUDGES:
+        pr = _problem(args, fudge=name)
+        ex = exact(pr)
+        U = np.atleast_1d(elastic_energy(pr))
+        for j, pb in enumerate(pr.p_bar):
+            A = np.atleast_1d(ex.contact_area)[j]
+            var = np.atleast_1d(ex.variance)[j]
+            tau = np.atleast_1d(ex.tau)[j]
+            print(f"{name:<6} {pb:11.4e} {pb / np.sqrt(V):11.4g} {A:12.8f} {var:12.5e} {U[j]:12.5e} {tau / V:9.5f}")
+    print()
+
+    zetas = [1.5, 4.0, 16.0, base.zeta_max]
+    zetas = sorted({z for z in zetas if z <= base.zeta_max})
+    fig = plotting.plot_exact_pdfs(base, zetas)
+    f1 = os.path.join(out, "pdf_exact.png")
+    fig.savefig(f1, dpi=120)
+
+    methods = [m for m in available_methods() if m not in ("py-pde", "fipy") or args.all_methods]
+    rows = []
+    if methods and not args.no_solvers:
+        print(f"Numerical solvers on this problem (fudge = {base.fudge.name}), checked against the exact solution:")
+        print(f"{'method':<20} {'n_p':>6} {'steps':>8} {'wall [ms]':>10} {'L1':>10} {'|dA*|':>10} {'load drift':>10}")
+        sols = []
+        for i, m in enumerate(methods):
+            _progress(i, len(methods), f"solving ({m})")
+            try:
+                sol = solve(base, method=m, zeta_out=np.array(zetas[1:]))
+            except Exception as err:  # report, keep going
+                print(f"\r{m:<20} failed: {err}")
+                continue
+            c = sol.compare().final()
+            rows.append({"method": m, "time": sol.wall_time, **c})
+            sols.append(sol)
+        _progress(len(methods), len(methods), "solving")
+        for r, sol in zip(rows, sols):
+            print(
+                f"{r['method']:<20} {sol.p.size:6d} {str(sol.info.get('steps', '-')):>8} {r['time'] * 1e3:10.2f} "
+                f"{r['L1']:10.2e} {r['area_error']:10.2e} {r['load_drift']:10.2e}"
+            )
+        with open(os.path.join(out, "solvers.csv"), "w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(rows[0]) if rows else ["method"])
+            w.writeheader()
+            w.writerows(rows)
+        for sol in sols:
+            fig = sol.plot()
+            fig.savefig(os.path.join(out, f"pdf_{sol.method}.png"), dpi=110)
+        if rows:
+            fig = plotting.plot_error_vs_time(rows)
+            fig.savefig(os.path.join(out, "error_vs_time.png"), dpi=110)
+    print(f"\nfigures and tables written to {os.path.abspath(out)}/")
+    return 0
+
+
+# -- solve --------------------------------------------------------------------------------------------
+def cmd_solve(args) -> int:
+    from .solvers import solve
+
+    pr = _problem(args)
+    opts = {}
+    for key in ("n_p", "n_steps", "rtol", "atol", "scheme"):
+        v = getattr(args, key)
+        if v is not None:
+            opts[key] = v
+    t0 = time.perf_counter()
+    sol = solve(pr, method=args.method, **opts)
+    wall = time.perf_counter() - t0
+    cmp_ = sol.compare()
+    ex = exact(pr)
+    print(f"{sol.method}: n_p = {sol.p.size}, steps = {sol.info.get('steps')}, wall = {wall * 1e3:.2f} ms")
+    print(
+        f"{'p_bar':>12} {'A* (num)':>12} {'A* (exact)':>12} {'|dA*|':>10} {'Var(p)':>12} "
+        f"{'load/p_bar-1':>13} {'L1':>10}"
+    )
+    A_ex = np.atleast_1d(ex.contact_area)
+    for j, pb in enumerate(pr.p_bar):
+        print(
+            f"{pb:12.5e} {sol.contact_area_all[-1, j]:12.8f} {A_ex[j]:12.8f} {cmp_.area_error[-1, j]:10.2e} "
+            f"{(sol.P0_all[-1, j] @ (sol.weights * sol.p**2) - pb**2):12.5e} "
+            f"{sol.load_all[-1, j] / pb - 1:13.2e} {cmp_.L1[-1, j]:10.2e}"
+        )
+    if args.output:
+        path = args.output
+        d = os.path.dirname(os.path.abspath(path))
+        os.makedirs(d, exist_ok=True)
+        if path.endswith(".json"):
+            data = {
+                "method": sol.method,
+                "zeta": sol.zeta.tolist(),
+                "p": sol.p.tolist(),
+                "p_bar": pr.p_bar.tolist(),
+                "P0": sol.P0_all[-1].tolist(),
+                "contact_area": sol.contact_area_all[-1].tolist(),
+                "wall_time": sol.wall_time,
+            }
+            with open(path, "w") as fh:
+                json.dump(data, fh)
+        else:
+            with open(path, "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow(["p"] + [f"P0(p_bar={pb:.6g})" for pb in pr.p_bar])
+                for i, p in enumerate(sol.p):
+                    w.writerow([f"{p:.12g}"] + [f"{v:.12g}" for v in sol.P0_all[-1, :, i]])
+        print(f"P0 at zeta_max written to {path}")
+    if args.plot:
+        fig = sol.plot()
+        fig.savefig(args.plot, dpi=120)
+        print(f"figure written to {args.plot}")
+    return 0
+
+
+# -- area ----------------------------------------------------------------------------------------------
+def cmd_area(args) -> int:
+    from . import plotting
+
+    out = _outdir(args.output)
+    if not (0 < args.ratio_min < args.ratio_max) or not np.isfinite(args.ratio_max):
+        raise CLIError("--ratio-min and --ratio-max must satisfy 0 < min < max")
+    if args.n_loads < 2:
+        raise CLIError("--n-loads must be >= 2")
+    base = _problem(args)
+    ratio = np.geomspace(args.ratio_min, args.ratio_max, args.n_loads)
+    p_bar = ratio * np.sqrt(base.V())
+    curves = {}
+    t0 = time.perf_counter()
+    for i, name in enumerate(FUDGES):
+        _progress(i, len(FUDGES), "contact-area curves")
+        pr = ContactProblem(base.psd, base.E_star, p_bar, None if name == "none" else name)
+        curves[name] = np.asarray(exact(pr).contact_area)
+    _progress(len(FUDGES), len(FUDGES), "contact-area curves")
+    wall = time.perf_counter() - t0
+    path = os.path.join(out, "contact_area.csv")
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["p_bar", "p_bar_over_sqrtV"] + [f"A_{n}" for n in FUDGES])
+        for j in range(ratio.size):
+            w.writerow([f"{p_bar[j]:.12g}", f"{ratio[j]:.12g}"] + [f"{curves[n][j]:.15g}" for n in FUDGES])
+    fig = plotting.plot_area_curve(ratio, curves)
+    fig.savefig(os.path.join(out, "contact_area.png"), dpi=120)
+    print(
+        f"{ratio.size} loads x {len(FUDGES)} models in {wall * 1e3:.1f} ms "
+        f"({ratio.size * len(FUDGES) / wall:.3g} loads/s)"
+    )
+    print(f"written {path} and contact_area.png")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="persson-fp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    parser.add_argument("--version", action="version", version=f"persson-fp {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="{report,solve,area}")
+
+    rep = sub.add_parser("report", help="exact table + solver check + figures (the default)")
+    _add_problem_args(rep)
+    rep.add_argument("--output", default="persson-fp-output", help="folder for PNG/CSV (default persson-fp-output)")
+    rep.add_argument("--no-solvers", action="store_true", help="only the exact solution")
+    rep.add_argument("--all-methods", action="store_true", help="also run py-pde and FiPy when installed (slow)")
+    rep.set_defaults(func=cmd_report)
+
+    so = sub.add_parser("solve", help="solve one problem with a numerical method")
+    _add_problem_args(so)
+    so.add_argument(
+        "--method", default="fv", help="fv | mol | sines | py-pde | fipy | chapman-kolmogorov | monte-carlo"
+    )
+    so.add_argument("--n-p", dest="n_p", type=int, default=None, help="grid cells / points / modes")
+    so.add_argument("--n-steps", dest="n_steps", type=int, default=None, help="steps in zeta (fixed-step schemes)")
+    so.add_argument("--rtol", type=float, default=None, help="relative tolerance (adaptive methods)")
+    so.add_argument("--atol", type=float, default=None, help="absolute tolerance (adaptive methods)")
+    so.add_argument("--scheme", default=None, help="fv time scheme (explicit, crank-nicolson, implicit, tr-bdf2)")
+    so.add_argument("--output", default=None, help="write P0 at zeta_max: .csv or .json")
+    so.add_argument("--plot", default=None, help="write a PNG of P0 against the exact solution")
+    so.set_defaults(func=cmd_solve)
+
+    ar = sub.add_parser("area", help="A*(p_bar) curves for every fudge model (exact)")
+    _add_problem_args(ar)
+    ar.add_argument("--n-loads", type=int, default=1000, help="number of loads (default 1000)")
+    ar.add_argument("--ratio-min", type=float, default=1e-3, help="smallest p_bar/sqrt(V) (default 1e-3)")
+    ar.add_argument("--ratio-max", type=float, default=3.0, help="largest p_bar/sqrt(V) (default 3)")
+    ar.add_argument("--output", default="persson-fp-output", help="folder for CSV/PNG")
+    ar.set_defaults(func=cmd_area)
+    return parser
+
+
+def main(argv=None) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if not argv or argv[0].startswith("-") and argv[0] not in ("-h", "--help", "--version"):
+        argv = ["report", *argv]
+    args = parser.parse_args(argv)
+    if args.command is None:
+        args = parser.parse_args(["report"])
+    try:
+        return args.func(args)
+    except (CLIError, ValueError, TypeError, ImportError, NotImplementedError) as err:
+        print(f"persson-fp {args.command}: error: {err}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,80 @@
+"""The persson-fp command, through its entry point and as a subprocess."""
+
+import csv
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import persson_fp as pf
+from persson_fp.cli import main
+
+
+def test_report_default_case(tmp_path, capsys):
+    rc = main(["report", "--output", str(tmp_path), "--no-solvers"])
+    out = capsys.readouterr().out
+    assert rc == 0
+    assert (tmp_path / "pdf_exact.png").stat().st_size > 1000
+    # the printed A* of every fudge model equals pf.exact on the reference problem
+    for name in ("none", "YP08", "WM17", "Xu24"):
+        line = next(ln for ln in out.splitlines() if ln.startswith(name + " "))
+        A_printed = float(line.split()[3])
+        A = pf.exact(pf.ContactProblem.reference(fudge=None if name == "none" else name)).contact_area
+        assert A_printed == pytest.approx(A, abs=1e-8)
+
+
+def test_default_command_is_report_and_runs_as_a_program(tmp_path):
+    r = subprocess.run(
+        [sys.executable, "-m", "persson_fp.cli", "--output", str(tmp_path / "o"), "--no-solvers"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert r.returncode == 0, r.stderr
+    assert "Exact solution at zeta_max" in r.stdout
+
+
+def test_area_command_csv_matches_exact(tmp_path):
+    rc = main(["area", "--n-loads", "50", "--output", str(tmp_path), "--H", "0.3"])
+    assert rc == 0
+    rows = list(csv.DictReader(open(tmp_path / "contact_area.csv")))
+    assert len(rows) == 50
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, 0.3, 1.0, 2.0, 128.0)
+    p_bar = np.array([float(r["p_bar"]) for r in rows])
+    for name in ("none", "YP08"):
+        A = pf.exact(pf.ContactProblem(psd, 1.0, p_bar, None if name == "none" else name)).contact_area
+        np.testing.assert_allclose([float(r[f"A_{name}"]) for r in rows], A, rtol=1e-10)  # p_bar printed to 12 digits
+    assert (tmp_path / "contact_area.png").exists()
+
+
+@pytest.mark.parametrize(
+    "argv, word",
+    [
+        (["report", "--H", "1.5", "--no-solvers"], "H must lie in"),
+        (["report", "--E-star", "-1", "--no-solvers"], "E_star"),
+        (["report", "--p-bar", "0", "--no-solvers"], "p_bar"),
+        (["report", "--psd-csv", "/nonexistent.csv", "--no-solvers"], "--psd-csv"),
+        (["area", "--ratio-min", "2", "--ratio-max", "1"], "--ratio-min"),
+    ],
+)
+def test_bad_arguments_exit_2_with_one_line(argv, word, capsys, tmp_path):
+    rc = main(argv + (["--output", str(tmp_path)] if argv[0] in ("report", "area") else []))
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert word in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_argparse_errors_exit_2(capsys):
+    with pytest.raises(SystemExit) as e:
+        main(["report", "--fudge", "XYZ"])
+    assert e.value.code == 2
+
+
+def test_psd_csv_with_bad_row_names_the_line(tmp_path, capsys):
+    f = tmp_path / "psd.csv"
+    f.write_text("q,C\n1,1e-4\n2,nan\n4,1e-6\n")
+    rc = main(["report", "--psd-csv", str(f), "--no-solvers", "--output", str(tmp_path)])
+    assert rc == 2
+    assert "line 3" in capsys.readouterr().err
