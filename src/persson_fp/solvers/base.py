@@ -138,7 +138,7 @@ class Solver:
         out = np.empty_like(V_target)
         zmax = self.problem.zeta_max
         for i, vt in enumerate(V_target):
-            out[i] = brentq(lambda z, vt=vt: float(self.problem.V(z)) - vt, 1.0, zmax, xtol=1e-14, rtol=4e-16)
+            out[i] = brentq(lambda z, vt=vt: float(self.problem.V(z)) - vt, 1.0, zmax, xtol=1e-14, rtol=1e-15)
         return out
 
     def start_zeta(self, zeta0=None, tau0_fraction=None) -> float:

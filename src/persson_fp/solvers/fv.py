@@ -1,0 +1,591 @@
+r"""Finite volumes in p, θ-schemes (and TR-BDF2) in the effective variance.
+
+The method
+----------
+Persson's equation (``E:diffusion_equ`` with ``eq:new_B2``)
+
+.. math::  \frac{\partial P_0}{\partial\zeta} = \tfrac12 B_2(\zeta)\,\frac{\partial^2 P_0}{\partial p^2},
+           \qquad B_2 = S(A^*)\,\frac{dV}{d\zeta}, \qquad A^* = \int_0^{p_{max}} P_0\,dp \quad (\texttt{eq:Area})
+
+is written in the effective variance :math:`d\tau = S(A^*)\,dV`: every step is a step
+:math:`\Delta\tau` of the plain heat equation :math:`\partial_\tau P_0 = \tfrac12\partial_p^2 P_0`,
+and the fudge factor only decides how large :math:`\Delta\tau` is for a given :math:`\Delta V`
+(the *coupling*, below).
+
+*Space.*  ``n_p`` cells of width :math:`\Delta p = p_{max}/n_p` on :math:`[0, p_{max}]`, unknowns the
+cell averages :math:`\bar P_i`.  The flux through face :math:`i+\tfrac12` is
+:math:`F_{i+1/2} = -\tfrac12(\bar P_{i+1}-\bar P_i)/\Delta p` and
+:math:`d\bar P_i/d\tau = -(F_{i+1/2}-F_{i-1/2})/\Delta p` (:func:`rhs`).  Both walls absorb
+(:math:`P_0 = 0` at the face): ghost values :math:`\bar P_{-1} = -\bar P_0`,
+:math:`\bar P_{n_p} = -\bar P_{n_p-1}`.  Because the exact solution is odd about p = 0
+(image solution, ``eq:P0_solution``), the ghost cell *is* the cell average of the odd extension,
+so the wall costs no order: the scheme is 2nd order in p everywhere.  The wall fluxes
+:math:`\bar P_0/\Delta p` and :math:`\bar P_{n_p-1}/\Delta p` are integrated with the same
+time-stepping weights as the cells, so :math:`\sum_i \bar P_i\,\Delta p + J_0 + J_{max}` is conserved
+to round-off and :math:`A^*(\zeta_0) - J_0` is reported as ``contact_area_flux``; the far-wall
+loss :math:`J_{max}` is reported in ``info["far_wall_mass"]``.  The load ``eq:Load_equilibrium``
+is conserved by the p = 0 wall exactly, so its drift measures the far-wall and truncation error.
+
+*Time.*  A θ-step with the tridiagonal operator :math:`L` (:func:`banded_operator`),
+
+.. math::  (I - \theta\,\Delta\tau\,L)\,P^{n+1} = (I + (1-\theta)\,\Delta\tau\,L)\,P^n ,
+
+with θ = 0 ("explicit", stable for :math:`r = \tfrac12\Delta\tau/\Delta p^2 \le \tfrac12`),
+θ = 1/2 ("crank-nicolson"), θ = 1 ("implicit", backward Euler), "rannacher" (θ = 1/2 after
+``rannacher_steps`` steps each done as two backward-Euler half steps) and "tr-bdf2" (an L-stable
+2nd-order one-step method: a trapezoidal stage over :math:`\gamma\Delta\tau` then BDF2, with
+:math:`\gamma = 2-\sqrt2` so that both stages share one matrix).  All loads are advanced together
+(``P`` has shape ``(n_loads, n_p)``) on one grid sized by the largest load: when all loads share
+:math:`\Delta\tau` (S = 1) one factorisation (LAPACK ``pttrf``; the matrix is symmetric positive
+definite) serves all of them and is re-used while :math:`\Delta\tau` repeats (uniform steps);
+otherwise the per-load systems are stacked into one block-tridiagonal solve (``ptsv``),
+O(n_p n_loads) per step.
+
+*Space, 4th order* (``space="compact4"``, the default).  The same fluxes with the compact mass
+matrix :math:`M = \mathrm{tridiag}(1, 10, 1)/12` (``M dP/dtau = L P``, odd ghosts again), which is
+the 4th-order reconstruction of the face derivative from cell averages; ``space="fv2"`` is
+M = I (2nd order).  Every θ-step above reads :math:`(M - \theta\Delta\tau L)P^{n+1} =
+(M + (1-\theta)\Delta\tau L)P^n`.  Here :math:`\sum_i (MP)_i\Delta p + J_0 + J_{max}` is the
+conserved quantity, and ``contact_area_flux`` adds the known edge term
+:math:`\tfrac16\Delta p\,(\bar P_0 - \bar P_0^{\,start})`, so the mass balance still closes to round-off.
+
+*Stepping* (measured on the reference problem, ``benchmarks/fv_timing.py``): nodes uniform in the
+effective variance ("tau") beat geometric and uniform-in-zeta nodes by 3-4x in error at equal
+cost, because the error made early is damped by the later diffusion; "tau" is the default.
+
+*Coupling of the fudge factor* (``eq:new_B2``), with :math:`A^*` always the numerical
+:math:`\sum\bar P_i\Delta p`:
+
+``"lagged"``     :math:`\Delta\tau = S(A^*_n)\,\Delta V` (1st order; default of "explicit" and "implicit").
+``"predictor"``  Heun: :math:`A^p = A^*_n - \Delta V\,S(A^*_n)\,b_n` from the current wall flux
+                 :math:`b_n`, then :math:`\Delta\tau = \tfrac12\Delta V\,(S(A^*_n)+S(A^p))` (2nd order,
+                 one solve per step; default of "crank-nicolson", "rannacher" and "tr-bdf2").
+``"picard"``     the trapezoidal rule :math:`\Delta\tau = \tfrac12\Delta V\,(S(A^*_n)+S(A^*_{n+1}))`
+                 iterated to ``picard_tol`` (starting from the predictor; 2nd order).
+
+Without a fudge factor :math:`\Delta\tau = \Delta V` exactly and the coupling does nothing.
+
+References
+----------
+.. [1] B.N.J. Persson, J. Chem. Phys. 115 (2001) 3840 (``E:diffusion_equ``).
+.. [2] R.E. Bank et al., "Transient simulation of silicon devices and circuits", IEEE Trans.
+       CAD 4 (1985) 436 (TR-BDF2).
+.. [3] R. Rannacher, "Finite element solution of diffusion problems with irregular data",
+       Numer. Math. 43 (1984) 309.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import lapack
+from scipy.optimize import brentq
+
+from ..fudge import NoFudge
+from ..solution import InstabilityError
+from .base import Solver, SolverOutput, check_float, check_int
+
+__all__ = ["FiniteVolumeSolver", "SCHEMES", "rhs", "banded_operator", "apply_operator"]
+
+
+# -- the scheme table: a scheme is data -----------------------------------------------------------
+@dataclass(frozen=True)
+class _Scheme:
+    theta: float
+    """Implicitness θ of the θ-step (TR-BDF2: θ of its first stage)."""
+    order: int
+    """Order in τ."""
+    l_stable: bool
+    coupling: str
+    """Default coupling of the fudge factor (see the module docstring)."""
+
+
+SCHEMES = {
+    "explicit": _Scheme(theta=0.0, order=1, l_stable=False, coupling="lagged"),
+    "implicit": _Scheme(theta=1.0, order=1, l_stable=True, coupling="lagged"),
+    "crank-nicolson": _Scheme(theta=0.5, order=2, l_stable=False, coupling="predictor"),
+    "rannacher": _Scheme(theta=0.5, order=2, l_stable=False, coupling="predictor"),
+    "tr-bdf2": _Scheme(theta=0.5, order=2, l_stable=True, coupling="predictor"),
+}
+"""Scheme name -> θ, order in τ, L-stability and default coupling."""
+
+_GAMMA = 2.0 - np.sqrt(2.0)
+"""TR-BDF2 stage fraction; makes the trapezoidal and BDF2 matrices equal."""
+_BDF2_A = 1.0 / (_GAMMA * (2.0 - _GAMMA))
+_BDF2_B = (1.0 - _GAMMA) ** 2 / (_GAMMA * (2.0 - _GAMMA))
+_BDF2_W = (1.0 - _GAMMA) / (2.0 - _GAMMA)  # = GAMMA / 2
+
+STEPPINGS = ("geometric", "zeta", "tau")
+COUPLINGS = ("auto", "lagged", "predictor", "picard")
+
+
+# -- the readable operator and the fast one ------------------------------------------------------
+def rhs(P, dp):
+    r"""dP/dτ of the semi-discrete heat equation, written as flux differences (readable path).
+
+    Parameters
+    ----------
+    P : array, shape (..., n_p), 1/pressure
+        Cell averages on a uniform grid of ``n_p`` cells on [0, p_max].
+    dp : float, pressure
+        Cell width.
+
+    Returns
+    -------
+    ndarray, shape of ``P``, 1/(pressure^3)
+        :math:`-(F_{i+1/2}-F_{i-1/2})/\Delta p` with :math:`F = -\tfrac12\partial_p P` and
+        absorbing walls (ghost cells :math:`-\bar P_0`, :math:`-\bar P_{n_p-1}`).  Multiply by
+        :math:`B_2 = S(A^*)\,dV/d\zeta` for dP0/dzeta (``E:diffusion_equ``, ``eq:new_B2``).
+    """
+    P = np.asarray(P, dtype=float)
+    ghost_lo = -P[..., :1]  # P0 = 0 at the face p = 0
+    ghost_hi = -P[..., -1:]  # P0 = 0 at the face p = p_max
+    ext = np.concatenate([ghost_lo, P, ghost_hi], axis=-1)
+    flux = -0.5 * np.diff(ext, axis=-1) / dp  # F at the n_p + 1 faces
+    return -np.diff(flux, axis=-1) / dp
+
+
+def wall_flux(P, dp):
+    """Outflow rates (per unit τ) through p = 0 and p = p_max: ``(P[...,0]/dp, P[...,-1]/dp)``."""
+    return P[..., 0] / dp, P[..., -1] / dp
+
+
+def banded_operator(n_p: int, dp: float) -> np.ndarray:
+    """The operator of :func:`rhs` in LAPACK/``solve_banded`` (1, 1) form, shape (3, n_p), 1/pressure^2."""
+    k = 0.5 / dp**2
+    ab = np.empty((3, n_p))
+    ab[0] = k
+    ab[2] = k
+    ab[1] = -2.0 * k
+    ab[1, 0] = ab[1, -1] = -3.0 * k
+    ab[0, 0] = ab[2, -1] = 0.0
+    return ab
+
+
+def _tri_matvec(P, a, d, d_end, out):
+    """out = T @ P along the last axis, T tridiagonal Toeplitz (a, d, a) with corner entries d_end.
+
+    ``a``, ``d``, ``d_end`` are scalars or per-load columns of shape (n_loads, 1).
+    """
+    np.add(P[..., 2:], P[..., :-2], out=out[..., 1:-1])
+    out[..., 1:-1] *= a
+    out[..., 1:-1] += d * P[..., 1:-1]
+    out[..., :1] = d_end * P[..., :1] + a * P[..., 1:2]
+    out[..., -1:] = d_end * P[..., -1:] + a * P[..., -2:-1]
+    return out
+
+
+def apply_operator(P, k, out=None):
+    """L @ P along the last axis (fast path of :func:`rhs`), ``k = 1/(2 dp^2)``."""
+    if out is None:
+        out = np.empty_like(P)
+    out[..., 1:-1] = P[..., 2:] + P[..., :-2]
+    out[..., 1:-1] -= 2.0 * P[..., 1:-1]
+    out[..., 0] = P[..., 1] - 3.0 * P[..., 0]
+    out[..., -1] = P[..., -2] - 3.0 * P[..., -1]
+    out *= k
+    return out
+
+
+SPACES = {"fv2": (1.0, 0.0), "compact4": (10.0 / 12.0, 1.0 / 12.0)}
+"""Space discretisation -> (diagonal, off-diagonal) of the mass matrix M of ``M dP/dtau = L P``."""
+
+
+def apply_mass(P, space, out=None):
+    """M @ P along the last axis (odd ghost cells at both walls); M = I for "fv2"."""
+    md, mo = SPACES[space]
+    if mo == 0.0:
+        return P.copy() if out is None else np.copyto(out, P) or out
+    if out is None:
+        out = np.empty_like(P)
+    out[..., 1:-1] = P[..., 2:] + P[..., :-2]
+    out[..., 1:-1] *= mo
+    out[..., 1:-1] += md * P[..., 1:-1]
+    out[..., 0] = (md - mo) * P[..., 0] + mo * P[..., 1]
+    out[..., -1] = (md - mo) * P[..., -1] + mo * P[..., -2]
+    return out
+
+
+class _Tridiag:
+    """Solves (M - c_j L) X_j = B_j for every load j (c_j >= 0 per load, L from :func:`banded_operator`)."""
+
+    def __init__(self, n_p: int, n_loads: int, k: float, space: str = "fv2"):
+        self.n, self.m, self.k = n_p, n_loads, k
+        self.md, self.mo = SPACES[space]
+        self._cache_c = None
+        self._lu = None
+        self.solves = 0
+        self.factorizations = 0
+
+    def _diagonals(self, c):
+        n, k = self.n, self.k
+        d = np.empty(n)
+        d[:] = self.md + 2.0 * c * k
+        d[0] = d[-1] = self.md - self.mo + 3.0 * c * k
+        off = np.full(n - 1, self.mo - c * k)
+        return off, d
+
+    def solve(self, c, B):
+        """c : (n_loads,) ; B : (n_loads, n_p) C-contiguous.  Returns X of the same shape."""
+        self.solves += 1
+        if self.m == 1 or (c == c[0]).all():
+            c0 = float(c[0])
+            if self._cache_c is None or abs(c0 - self._cache_c) > 4e-16 * abs(c0):
+                off, d = self._diagonals(c0)
+                d, e, info = lapack.dpttrf(d, off)  # M - c L is symmetric positive definite: L D L^T
+                self._lu = (d, e)
+                self._cache_c = c0
+                self.factorizations += 1
+            X, info = lapack.dpttrs(*self._lu, B.T)
+            return X.T
+        # per-load steps: one stacked block-tridiagonal system of size n_loads * n_p
+        n, k = self.n, self.k
+        ck = (c * k)[:, None]
+        d = np.empty((self.m, n))
+        d[:] = self.md + 2.0 * ck
+        d[:, 0] = d[:, -1] = (self.md - self.mo + 3.0 * ck)[:, 0]
+        off = np.empty((self.m, n))
+        off[:] = self.mo - ck
+        off[:, -1] = 0.0  # no coupling between the blocks
+        off = off.ravel()[:-1]
+        self.factorizations += 1
+        _, _, X, info = lapack.dptsv(d.ravel(), off, B.reshape(-1, 1))
+        return X.reshape(self.m, n)
+
+
+class FiniteVolumeSolver(Solver):
+    r"""Cell-centred finite volumes with θ-schemes / TR-BDF2 (see the module docstring).
+
+    Options
+    -------
+    n_p : int, default 200
+        Cells on [0, p_max].
+    n_steps : int, default 100
+        Steps from zeta0 to the last output station (shared over the stations' segments).
+    scheme : str, default "tr-bdf2"
+        "explicit" | "implicit" | "crank-nicolson" | "rannacher" | "tr-bdf2".
+    stepping : str, default "tau"
+        Node placement: "tau" (uniform in the effective variance tau of each load, placed with the
+        closed-form tau(V); the coupling still uses the numerical A*), "geometric" (uniform in
+        ln V) or "zeta" (uniform in zeta).
+    space : str, default "compact4"
+        "compact4" (4th order in p) or "fv2" (2nd order in p, M = I).
+    coupling : str, default "auto"
+        "lagged" | "predictor" | "picard"; "auto" is the scheme's own (``SCHEMES``).
+    picard_tol, picard_maxiter : float, int
+        Relative tolerance on dtau and iteration cap of ``coupling="picard"``.
+    initial : str, default "exact"
+        "exact": exact cell averages at zeta0; "delta": one cell of mass 1 at p_bar at zeta = 1.
+    zeta0, tau0_fraction : float
+        Start of "exact": zeta0 given, else where tau = ``tau0_fraction`` tau(zeta_max) (largest
+        load; lowered to half the first station's tau if needed).  The start is exact, so zeta0
+        enters the error only through the steps spent after it.
+    k_domain : float, default 8
+        p_max = max(p_bar) + k_domain sqrt(tau(zeta_max)) (``ContactProblem.p_max``).
+    rannacher_steps : int, default 2
+        Steps of "rannacher" done as two backward-Euler half steps.
+    allow_unstable : bool, default False
+        Let "explicit" run past r = 1/2 (then an :class:`InstabilityError` is expected).
+    check_every : int, default 10
+        Steps between stability checks (NaN, mass growth, max |P0| growth).
+    """
+
+    name = "fv"
+    OPTIONS = {
+        "n_p": 200,
+        "n_steps": 100,
+        "scheme": "tr-bdf2",
+        "stepping": "tau",
+        "coupling": "auto",
+        "picard_tol": 1e-12,
+        "picard_maxiter": 20,
+        "initial": "exact",
+        "zeta0": None,
+        "tau0_fraction": 0.05,
+        "k_domain": 8.0,
+        "space": "compact4",
+        "rannacher_steps": 2,
+        "allow_unstable": False,
+        "check_every": 10,
+    }
+
+    def validate(self) -> None:
+        o = self.opts
+        o["n_p"] = check_int(o["n_p"], "n_p", 4)
+        o["n_steps"] = check_int(o["n_steps"], "n_steps", 1)
+        for key, allowed in (
+            ("scheme", tuple(SCHEMES)),
+            ("stepping", STEPPINGS),
+            ("coupling", COUPLINGS),
+            ("initial", ("exact", "delta")),
+            ("space", tuple(SPACES)),
+        ):
+            if o[key] not in allowed:
+                raise ValueError(f"{key} must be one of {list(allowed)}, got {o[key]!r}")
+        o["picard_tol"] = check_float(o["picard_tol"], "picard_tol", 0.0, 1.0)
+        o["picard_maxiter"] = check_int(o["picard_maxiter"], "picard_maxiter", 1)
+        o["tau0_fraction"] = check_float(o["tau0_fraction"], "tau0_fraction", 0.0, 1.0)
+        o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0)
+        o["rannacher_steps"] = check_int(o["rannacher_steps"], "rannacher_steps", 0)
+        o["check_every"] = check_int(o["check_every"], "check_every", 1)
+        o["allow_unstable"] = bool(o["allow_unstable"])
+        if o["zeta0"] is not None:
+            check_float(o["zeta0"], "zeta0", 1.0, float(self.zeta_out[0]))
+
+    # -- set-up --------------------------------------------------------------------------------
+    def _start(self):
+        """(zeta0, V0, P_init (n_loads, n_p), A_init (n_loads,)) on the grid ``self.edges``."""
+        o, pr = self.opts, self.problem
+        if o["initial"] == "delta":
+            P = np.zeros((pr.n_loads, self.n_p))
+            idx = np.minimum((pr.p_bar / self.dp).astype(int), self.n_p - 1)
+            P[np.arange(pr.n_loads), idx] = 1.0 / self.dp
+            return 1.0, 0.0, P, np.ones(pr.n_loads)
+        if o["zeta0"] is not None:
+            z0 = float(o["zeta0"])
+        else:
+            # where tau = frac * tau(zeta_max) for the load with the largest tau (cf. Solver.start_zeta)
+            V_max = float(pr.V())
+            j = int(np.argmax(pr.tau_of_V(V_max)))
+            tau_max = float(pr.tau_of_V(V_max)[j])
+            tau_first = float(pr.tau_of_V(pr.V(self.zeta_out[0]))[j])
+            target = min(o["tau0_fraction"] * tau_max, 0.5 * tau_first)
+            V0 = brentq(lambda v: float(pr.tau_of_V(v)[j]) - target, 0.0, V_max, xtol=1e-300, rtol=1e-15)
+            z0 = self._zeta_of_V(V0)
+        ex = self.exact_at(z0)
+        F = np.asarray(ex.cdf_contact(self.edges)).reshape(pr.n_loads, -1)
+        P = np.ascontiguousarray(np.diff(F, axis=-1) / self.dp)
+        A = np.asarray(ex.contact_area, dtype=float).reshape(pr.n_loads)
+        return z0, float(pr.V(z0)), P, A
+
+    def _zeta_of_V(self, V) -> float:
+        """Magnification where V(zeta) = V (monotone root find; 1 for V <= 0)."""
+        if V <= 0.0:
+            return 1.0
+        pr = self.problem
+        return float(brentq(lambda z: float(pr.V(z)) - V, 1.0, pr.zeta_max, xtol=1e-14, rtol=1e-15))
+
+    def _nodes(self, V0):
+        """V at the step nodes, shape (n_nodes, n_loads); every station is a node."""
+        o, pr = self.opts, self.problem
+        V_st = np.concatenate(([V0], np.atleast_1d(pr.V(self.zeta_out))))
+        z_st = np.concatenate(([self.zeta0], self.zeta_out))
+        m = pr.n_loads
+        if o["stepping"] == "zeta":
+            s = z_st
+        elif o["stepping"] == "geometric":
+            s = np.log(np.maximum(V_st, 1e-3 * V_st[1]))
+        else:  # tau of the largest-tau load decides the split; nodes per load below
+            s = np.max(pr.tau_of_V(V_st), axis=-1)
+        lengths = np.diff(s)
+        n_seg = len(lengths)
+        counts = np.maximum(1, np.round(o["n_steps"] * lengths / max(s[-1] - s[0], 1e-300)).astype(int))
+        while counts.sum() > max(o["n_steps"], n_seg):
+            counts[np.argmax(counts)] -= 1
+        while counts.sum() < o["n_steps"]:
+            counts[np.argmax(lengths / counts)] += 1
+        pieces = [np.full((1, m), V_st[0])]
+        for i in range(n_seg):
+            t = np.linspace(0.0, 1.0, counts[i] + 1)[1:]
+            Va, Vb = V_st[i], V_st[i + 1]
+            if o["stepping"] == "zeta":
+                V = np.atleast_1d(pr.V(z_st[i] + t * (z_st[i + 1] - z_st[i])))[:, None] * np.ones(m)
+            elif o["stepping"] == "geometric":
+                lo = max(Va, 1e-3 * V_st[1])
+                V = np.exp(np.log(lo) + t * (np.log(Vb) - np.log(lo)))[:, None] * np.ones(m)
+            else:
+                V = self._uniform_tau_nodes(Va, Vb, t)
+            V[-1] = Vb  # land on the station exactly
+            pieces.append(V)
+        return np.concatenate(pieces, axis=0), np.cumsum(counts)
+
+    def _uniform_tau_nodes(self, Va, Vb, t):
+        """V nodes at uniform closed-form tau between Va and Vb, per load, shape (len(t), n_loads)."""
+        pr = self.problem
+        if Vb <= Va:
+            return np.full((t.size, pr.n_loads), Vb)
+        if isinstance(pr.fudge, NoFudge):
+            return (Va + t * (Vb - Va))[:, None] * np.ones(pr.n_loads)
+        Vt = np.linspace(Va, Vb, 2049)
+        tt = pr.tau_of_V(Vt)  # (2049, n_loads), increasing in V
+        target = tt[0] + t[:, None] * (tt[-1] - tt[0])
+        out = np.empty((t.size, pr.n_loads))
+        for j in range(pr.n_loads):
+            out[:, j] = np.interp(target[:, j], tt[:, j], Vt)
+        return out
+
+    # -- the run ---------------------------------------------------------------------------------
+    def _solve(self) -> SolverOutput:
+        o, pr = self.opts, self.problem
+        scheme = SCHEMES[o["scheme"]]
+        coupling = scheme.coupling if o["coupling"] == "auto" else o["coupling"]
+        no_fudge = isinstance(pr.fudge, NoFudge)
+        S = pr.fudge.S
+
+        self.n_p = N = o["n_p"]
+        p_max = pr.p_max(o["k_domain"])
+        self.dp = dp = p_max / N
+        self.edges = np.linspace(0.0, p_max, N + 1)
+        p = 0.5 * (self.edges[1:] + self.edges[:-1])
+        k = 0.5 / dp**2
+        m = pr.n_loads
+
+        self.zeta0, V0, P, A0 = self._start()
+        V_nodes, station_idx = self._nodes(V0)
+        n_steps = V_nodes.shape[0] - 1
+
+        space = o["space"]
+        compact = space != "fv2"
+        r_limit = 1.0 / 3.0 if compact else 0.5  # explicit: dtau max|eig(M^-1 L)| <= 2
+        w_edge = 1.0 - SPACES[space][0]  # sum(M P) = sum(P) - w_edge (P_0 + P_-1)
+        # explicit-scheme limit, checked up front with the largest possible dtau
+        if scheme.theta == 0.0:
+            S_hi = 1.0 if no_fudge else float(np.max(S(np.linspace(0.0, 1.0, 201))))
+            r_pred = 0.5 * S_hi * float(np.max(np.diff(V_nodes, axis=0))) / dp**2
+            if r_pred > r_limit and not o["allow_unstable"]:
+                raise ValueError(
+                    f"explicit scheme: r = dtau/(2 dp^2) = {r_pred:.4g} exceeds the stability limit "
+                    f"{r_limit:.4g} ({space}); raise n_steps to >= {int(np.ceil(n_steps * r_pred / r_limit))}, "
+                    "lower n_p, or use "
+                    "scheme='tr-bdf2' / 'implicit' (or pass allow_unstable=True)"
+                )
+
+        solver = _Tridiag(N, m, k, space)
+        m_d, m_o = SPACES[space]
+        MP = np.empty_like(P)
+        P_edge0 = P[:, 0].copy()
+        mass = P.sum(axis=-1) * dp
+        J0 = np.zeros(m)  # absorbed through p = 0 since zeta0
+        JN = np.zeros(m)  # lost through p = p_max
+        P_out = np.empty((self.zeta_out.size, m, N))
+        A_out = np.empty((self.zeta_out.size, m))
+        Af_out = np.empty((self.zeta_out.size, m))
+        sup0 = np.max(np.abs(P), axis=-1)
+        mass_prev = mass.copy()
+        picard_iters = 0
+        r_max = 0.0
+        dtau_total = np.zeros(m)
+
+        def theta_step(P, dtau, theta):
+            """One θ-step of size dtau (per load); returns (P_new, dJ0, dJN)."""
+            b0, bN = wall_flux(P, dp)
+            ck = ((1.0 - theta) * k) * (dtau if m > 1 else dtau[0])
+            if m > 1:
+                ck = ck[:, None]
+            # (M + (1 - theta) dtau L) P in one stencil pass
+            Bv = _tri_matvec(P, m_o + ck, m_d - 2.0 * ck, m_d - m_o - 3.0 * ck, np.empty_like(P))
+            Pn = solver.solve(theta * dtau, Bv) if (theta > 0.0 or compact) else Bv
+            c0, cN = wall_flux(Pn, dp)
+            return (
+                Pn,
+                dtau * (theta * c0 + (1.0 - theta) * b0),
+                dtau * (theta * cN + (1.0 - theta) * bN),
+            )
+
+        def step(P, dtau, n):
+            """One step of the chosen scheme: (P_new, dJ0, dJN)."""
+            if o["scheme"] == "tr-bdf2":
+                Ps, j0s, jNs = theta_step(P, _GAMMA * dtau, 0.5)
+                apply_mass(_BDF2_A * Ps - _BDF2_B * P, space, out=MP)
+                Pn = np.ascontiguousarray(solver.solve(_BDF2_W * dtau, MP))
+                c0, cN = wall_flux(Pn, dp)
+                return Pn, _BDF2_A * j0s + _BDF2_W * dtau * c0, _BDF2_A * jNs + _BDF2_W * dtau * cN
+            if o["scheme"] == "rannacher" and n < o["rannacher_steps"]:
+                Ph, a0, aN = theta_step(P, 0.5 * dtau, 1.0)
+                Pn, b0_, bN_ = theta_step(np.ascontiguousarray(Ph), 0.5 * dtau, 1.0)
+                return Pn, a0 + b0_, aN + bN_
+            return theta_step(P, dtau, scheme.theta)
+
+        st = 0
+        dtau_prev = None
+        for n in range(n_steps):
+            dV = V_nodes[n + 1] - V_nodes[n]
+            if no_fudge:
+                dtau = dV.copy()
+                if dtau_prev is not None and np.all(np.abs(dtau - dtau_prev) <= 1e-12 * dtau):
+                    dtau = dtau_prev  # uniform steps: keep the factorisation (a 1e-12 relative shift)
+            else:
+                Sn = S(mass)
+                if coupling == "lagged":
+                    dtau = Sn * dV
+                else:
+                    b = (P[:, 0] + P[:, -1]) / dp
+                    A_pred = np.clip(mass - dV * Sn * b, 0.0, 1.0)
+                    dtau = 0.5 * dV * (Sn + S(A_pred))
+            Pn, dJ0, dJN = step(P, dtau, n)
+            if coupling == "picard" and not no_fudge:
+                for _ in range(o["picard_maxiter"]):
+                    picard_iters += 1
+                    new_mass = mass - dJ0 - dJN
+                    dtau_new = 0.5 * dV * (Sn + S(new_mass))
+                    if np.max(np.abs(dtau_new - dtau)) <= o["picard_tol"] * np.max(dtau):
+                        dtau = dtau_new
+                        break
+                    dtau = dtau_new
+                    Pn, dJ0, dJN = step(P, dtau, n)
+            r_max = max(r_max, 0.5 * float(np.max(dtau)) / dp**2)
+            if scheme.theta == 0.0 and r_max > r_limit and not o["allow_unstable"]:
+                raise ValueError(
+                    f"explicit scheme: r = dtau/(2 dp^2) = {r_max:.4g} exceeds the stability limit {r_limit:.4g} "
+                    "(the fudge factor enlarged dtau); raise n_steps or use an implicit scheme"
+                )
+            dtau_prev = dtau
+            P = np.ascontiguousarray(Pn)
+            J0 += dJ0
+            JN += dJN
+            dtau_total += dtau
+            mass = P.sum(axis=-1) * dp
+            if (n + 1) % o["check_every"] == 0 or n + 1 == n_steps:
+                remedy = "raise n_steps or use scheme='tr-bdf2'"
+                try:
+                    self.check_state(P, mass, mass_prev, np.nan, "fv/" + o["scheme"], remedy)
+                except InstabilityError:  # say where (the root find costs only when it fails)
+                    z_now = self._zeta_of_V(float(V_nodes[n + 1, 0]))
+                    self.check_state(P, mass, mass_prev, z_now, "fv/" + o["scheme"], remedy)
+                sup = np.max(np.abs(P), axis=-1)
+                if np.any(sup > 2.0 * sup0 + 1e-300):
+                    z_now = self._zeta_of_V(float(V_nodes[n + 1, 0]))
+                    raise InstabilityError(
+                        f"fv/{o['scheme']}: max |P0| grew by a factor {np.max(sup / sup0):.3g} by zeta = "
+                        f"{z_now:.6g} (the heat equation cannot do that; r = {r_max:.3g}); {remedy}"
+                    )
+                mass_prev = mass.copy()
+            while st < station_idx.size and n + 1 == station_idx[st]:
+                P_out[st] = P
+                A_out[st] = mass
+                Af_out[st] = A0 - J0 + w_edge * dp * (P[:, 0] - P_edge0)
+                st += 1
+
+        ex_end = self.exact_at(self.zeta_out[-1])
+        A_ex = np.asarray(ex_end.contact_area, float).reshape(m)
+        tail = A_ex - np.asarray(ex_end.cdf_contact(np.array([p_max])), float).reshape(m)
+        info = {
+            "grid": {"n_p": N, "p_max": p_max, "dp": dp},
+            "edges": self.edges,
+            "steps": n_steps,
+            "zeta0": self.zeta0,
+            "scheme": o["scheme"],
+            "stepping": o["stepping"],
+            "coupling": "exact (S = 1)" if no_fudge else coupling,
+            "order_tau": scheme.order,
+            "tridiagonal_solves": solver.solves,
+            "factorizations": solver.factorizations,
+            "picard_iterations": picard_iters,
+            "r_max": r_max,
+            "far_wall_mass": float(np.max(JN)),
+            "tail_mass_exact": float(np.max(np.abs(tail))),
+            "tau_numerical": dtau_total + (0.0 if o["initial"] == "delta" else pr.tau(self.zeta0)),
+            "k_domain": o["k_domain"],
+            "space": space,
+            "order_p": 4 if compact else 2,
+        }
+        return SolverOutput(
+            p=p,
+            P0=P_out,
+            weights=np.full(N, dp),
+            kind="cell",
+            info=info,
+            contact_area=A_out,
+            contact_area_flux=Af_out,
+        )
