@@ -268,7 +268,10 @@ class FiniteVolumeSolver(Solver):
     stepping : str, default "tau"
         Node placement: "tau" (uniform in the effective variance tau of each load, placed with the
         closed-form tau(V); the coupling still uses the numerical A*), "geometric" (uniform in
-        ln V) or "zeta" (uniform in zeta).
+        ln V) or "zeta" (uniform in zeta).  "tau" is best at zeta_max (early errors are damped by
+        the later diffusion); when several early stations must be equally accurate, "geometric"
+        balances the error across stations (reference problem, stations 4/32/128, 150 steps:
+        L1 = 2.9e-6/9.2e-6/8.8e-6 against 3.2e-4/2.4e-5/5.6e-6 for "tau" with the default 100).
     space : str, default "compact4"
         "compact4" (4th order in p) or "fv2" (2nd order in p, M = I).
     coupling : str, default "auto"

@@ -1,0 +1,477 @@
+r"""Method of lines: finite differences in p, ``scipy.integrate.solve_ivp`` in tau or zeta.
+
+Point values :math:`P_i \approx P_0(p_i)` on the uniform nodes
+:math:`p_i = i h`, :math:`i = 0..n_p-1`, :math:`h = p_{max}/(n_p-1)`, with the
+absorbing walls :math:`P_0 = P_{n_p-1} = 0` (``E:diffusion_equ``).  The
+unknowns are the :math:`m = n_p - 2` interior values.
+
+**Space.**  ``order=2``: the three-point Laplacian.  ``order=4``: the
+five-point one, :math:`(-P_{i-2} + 16P_{i-1} - 30P_i + 16P_{i+1} - P_{i+2})/12h^2`,
+whose ghost values next to a wall come from the odd extension
+:math:`P_0(-p) = -P_0(p)` (and likewise about p_max).  That extension is exact
+for the image solution (``eq:P0_solution``): with :math:`P_0(0) = 0` the heat
+equation forces every even derivative to vanish at the wall, so the odd
+extension is as smooth as P0 and the stencil keeps fourth order up to the
+wall.  Quadrature (contact area, and A* inside the fudge factor): the
+trapezoid rule for ``order=2`` and Gregory's fourth-order end-corrected rule
+(weights h [3/8, 7/6, 23/24, 1, ..., 1, 23/24, 7/6, 3/8]) for ``order=4`` --
+the trapezoid rule alone would cap A* at O(h^2) because P0'(0) != 0.
+
+**Time.**  ``variable="tau"`` (default) integrates in the effective variance
+:math:`\tau = \int S\,dV` (``eq:new_B2``), where the semi-discrete system is
+linear with a constant banded matrix, :math:`dP/d\tau = \tfrac12 L P`.
+Without a fudge factor tau = V and that is all.  With one, each load carries
+its complete-contact variance :math:`V_j` as an extra unknown,
+
+.. math::  \frac{dP_j}{d\tau} = \tfrac12 L P_j, \qquad
+           \frac{dV_j}{d\tau} = \frac{1}{S(A_j)}, \quad A_j = w\cdot P_j ,
+
+so the nonlocal coupling sits in one extra Jacobian row per load,
+:math:`\partial \dot V_j/\partial P_j = -S'(A_j)/S(A_j)^2\, w^T` (m entries):
+the Jacobian stays sparse, its LU has no fill beyond that row, and it is
+exact.  All loads share tau; each load's stations are the taus where
+:math:`V_j = V(\zeta_{out})`, found by Newton's method on the dense output
+(:math:`dV_j/d\tau = 1/S` is known), and the run stops when the slowest load
+reaches V(zeta_max).  ``variable="zeta"`` integrates
+:math:`dP_j/d\zeta = c_j L P_j`, :math:`c_j = \tfrac12 S(A_j)\,dV/d\zeta`,
+whose exact Jacobian :math:`c_j L + (L P_j)(c_j'\,w)^T` is a rank-one update
+of a banded block -- dense per load (m^2 entries, dense LU): kept for the
+comparison, not as the default.
+
+**Start.**  ``ic="exact"``: the image solution at a small start-up tau0
+(``tau0_fraction`` of the largest final tau, default automatic: tau0 = 2 h^2,
+enough that the sampled Gaussian is resolved; measured: the final error does
+not depend on tau0 once tau0 >~ h^2, and is O(1) below, where the sampled
+Gaussian loses its mass), converted to zeta0 per load
+through the exact effective-variance map and reported in ``info["zeta0"]``.
+The exact start is part of the reference, so it adds no error of its own;
+the error is then space (O(h^order)) plus time (``rtol``/``atol``).
+``ic="delta"``: the discrete delta (mass and first moment of
+:math:`\delta(p-\bar p)` split between the two neighbouring nodes) at
+zeta = 1: an O(h^2/tau) start-up error that never fully heals.
+
+**Integrators.**  Stiff ("BDF", "Radau", "LSODA") get the sparse Jacobian
+(LSODA a dense one: it cannot take sparse matrices); explicit ones ("RK45",
+"RK23", "DOP853") must resolve the stiffest mode, step ~ h^2/S: their cost
+grows like n_p^2 (the stability study).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+from ..exact import image_pdf
+from ..fudge import NoFudge
+from ..solution import SolverError
+from .base import Solver, SolverOutput, check_float, check_int
+
+__all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
+
+_STIFF = ("BDF", "Radau", "LSODA")
+_EXPLICIT = ("RK45", "RK23", "DOP853")
+_H_OVER_SIGMA = {2: 0.0085, 4: 0.085}
+"""Automatic spacing h / sqrt(tau_first): L1 ~ 5e-6 at the first station on the reference problem."""
+_N_P_AUTO_MAX = 20001
+
+
+def laplacian(m: int, h: float, order: int = 2) -> sp.csr_matrix:
+    """d^2/dp^2 on the ``m`` interior nodes with P = 0 at both walls (1/pressure^2).
+
+    ``order=4`` closes the five-point stencil with the odd extension about
+    each wall (ghost P_{-1} = -P_1), see the module docstring.
+    """
+    if order == 2:
+        L = sp.diags([np.ones(m - 1), -2.0 * np.ones(m), np.ones(m - 1)], [-1, 0, 1], shape=(m, m))
+        return (L / h**2).tocsr()
+    d0 = -30.0 * np.ones(m)
+    d0[0] += 1.0  # ghost -P_1 enters with weight -1: -(-P_1)
+    d0[-1] += 1.0
+    L = sp.diags(
+        [-np.ones(m - 2), 16.0 * np.ones(m - 1), d0, 16.0 * np.ones(m - 1), -np.ones(m - 2)],
+        [-2, -1, 0, 1, 2],
+        shape=(m, m),
+    )
+    return (L / (12.0 * h**2)).tocsr()
+
+
+def laplacian_readable(P: np.ndarray, h: float, order: int = 2) -> np.ndarray:
+    """The same operator as :func:`laplacian`, written with ghost values on the last axis of ``P``."""
+    z = np.zeros(P.shape[:-1] + (1,))
+    if order == 2:
+        Q = np.concatenate([z, P, z], axis=-1)  # walls
+        return (Q[..., :-2] - 2.0 * Q[..., 1:-1] + Q[..., 2:]) / h**2
+    Q = np.concatenate([-P[..., :1], z, P, z, -P[..., -1:]], axis=-1)  # odd ghosts, walls
+    return (-Q[..., :-4] + 16.0 * Q[..., 1:-3] - 30.0 * Q[..., 2:-2] + 16.0 * Q[..., 3:-1] - Q[..., 4:]) / (12.0 * h**2)
+
+
+def quadrature_weights(n_p: int, h: float, order: int = 2) -> np.ndarray:
+    """Weights on all ``n_p`` nodes (pressure): trapezoid (order 2) or Gregory's 4th-order rule (order 4)."""
+    w = np.full(n_p, h)
+    if order == 2:
+        w[[0, -1]] = 0.5 * h
+    else:
+        end = h * np.array([3.0 / 8.0, 7.0 / 6.0, 23.0 / 24.0])
+        w[:3] = end
+        w[-3:] = end[::-1]
+    return w
+
+
+@dataclass
+class MOLSystem:
+    """The semi-discrete system handed to ``solve_ivp`` (exposed for tests and studies).
+
+    ``fun`` is the fast (sparse) right-hand side, ``fun_readable`` the plain
+    numpy one, ``jac`` the exact Jacobian (sparse) or None.
+    """
+
+    fun: object
+    fun_readable: object
+    jac: object
+    y0: np.ndarray
+    t0: float
+    t1: float
+    n_loads: int
+    m: int
+    augmented: bool
+
+
+class MethodOfLinesSolver(Solver):
+    r"""Method of lines for ``E:diffusion_equ`` / ``eq:new_B2`` (module docstring).
+
+    Options
+    -------
+    n_p : int or None
+        Grid nodes on [0, p_max], walls included (>= 8).  ``None``: the spacing
+        h = c sqrt(tau) at the first output station (smallest tau over loads),
+        c = 0.085 for order 4 and 0.0085 for order 2, measured to give
+        L1 ~ 5e-6 there (the error scales like (h/sqrt(tau))^order, so a uniform
+        grid sized for zeta_max alone is too coarse for early stations).
+    order : {2, 4}
+        Order of the finite differences in p.
+    integrator : str
+        ``solve_ivp`` method: "BDF", "Radau", "LSODA", "RK45", "RK23", "DOP853".
+    rtol, atol : float
+        ``solve_ivp`` tolerances (atol in 1/pressure, scaled by 1/sqrt(tau_max) if None).
+    variable : {"tau", "zeta"}
+        Independent variable (module docstring).
+    ic : {"exact", "delta"}
+        Start from the exact solution at zeta0 or from the discrete delta at zeta = 1.
+    zeta0, tau0_fraction : float or None
+        Start-up magnification, or tau0 as a fraction of the largest final tau
+        (``ic="exact"``); both None: tau0 = 2 h^2.
+    k_domain : float
+        p_max = max(p_bar) + k_domain sqrt(tau(zeta_max)).
+    """
+
+    name = "mol"
+    OPTIONS = {
+        "n_p": None,
+        "order": 4,
+        "integrator": "BDF",
+        "rtol": 1e-5,
+        "atol": None,
+        "variable": "tau",
+        "ic": "exact",
+        "zeta0": None,
+        "tau0_fraction": None,
+        "k_domain": 10.0,
+    }
+
+    def validate(self) -> None:
+        o = self.opts
+        if o["n_p"] is not None:
+            o["n_p"] = check_int(o["n_p"], "n_p", 8, 10_000_000)
+        if o["order"] not in (2, 4):
+            raise ValueError(f"order must be 2 or 4, got {o['order']!r}")
+        if o["integrator"] not in _STIFF + _EXPLICIT:
+            raise ValueError(f"integrator must be one of {list(_STIFF + _EXPLICIT)}, got {o['integrator']!r}")
+        o["rtol"] = check_float(o["rtol"], "rtol", 0.0, 1.0)
+        if o["atol"] is not None:
+            o["atol"] = check_float(o["atol"], "atol", 0.0, np.inf)
+        if o["variable"] not in ("tau", "zeta"):
+            raise ValueError(f"variable must be 'tau' or 'zeta', got {o['variable']!r}")
+        if o["ic"] not in ("exact", "delta"):
+            raise ValueError(f"ic must be 'exact' or 'delta', got {o['ic']!r}")
+        if o["ic"] == "delta" and (o["zeta0"] is not None or o["tau0_fraction"] is not None):
+            raise ValueError("zeta0 / tau0_fraction apply to ic='exact' only")
+        o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 1e3)
+
+    # -- grid and start ---------------------------------------------------------------------------
+    def _grid(self):
+        o = self.opts
+        L = self.problem.p_max(o["k_domain"])
+        if o["n_p"] is None:
+            tau_first = float(np.min(self.problem.tau(self.zeta_out[0])))
+            h = _H_OVER_SIGMA[o["order"]] * np.sqrt(tau_first)
+            o["n_p"] = int(min(max(np.ceil(L / h) + 1, 16), _N_P_AUTO_MAX))
+        p = np.linspace(0.0, L, o["n_p"])
+        return p, p[1] - p[0]
+
+    def _start(self, h):
+        """Start-up (zeta0 per load, tau0 per load, V0 per load) for ``ic="exact"``."""
+        pr = self.problem
+        o = self.opts
+        tau_max = pr.tau(pr.zeta_max)
+        if o["zeta0"] is not None:
+            z0 = self.start_zeta(zeta0=o["zeta0"])
+        else:
+            frac = o["tau0_fraction"]
+            if frac is None:
+                tau_first = float(np.max(pr.tau(self.zeta_out[0])))
+                frac = min(2.0 * h * h, 0.25 * tau_first) / float(np.max(tau_max))
+            z0 = self.start_zeta(tau0_fraction=frac)
+        V0 = float(pr.V(z0))
+        tau0 = pr.tau_of_V(V0)  # per load
+        return z0, V0, tau0
+
+    # -- the semi-discrete system -----------------------------------------------------------------
+    def system(self) -> MOLSystem:
+        """Build the ODE system, its readable twin, the exact Jacobian and the start (see module docstring)."""
+        pr = self.problem
+        o = self.opts
+        p, h = self._grid()
+        n_p, order = o["n_p"], o["order"]
+        m = n_p - 2
+        nl = pr.n_loads
+        pi = p[1:-1]
+        w = quadrature_weights(n_p, h, order)[1:-1]
+        Lm = laplacian(m, h, order)
+        Lb = sp.block_diag([Lm] * nl, format="csr") if nl > 1 else Lm
+        fudge = pr.fudge
+        nofudge = isinstance(fudge, NoFudge)
+        self._grid_cache = (p, h, w)
+        info = {}
+
+        # initial data
+        if o["ic"] == "exact":
+            z0, V0, tau0_l = self._start(h)
+            if o["variable"] == "tau":
+                tau0 = float(np.max(tau0_l))  # common tau0; each load's V_j0 from the exact map
+                V0_l = self._V_at_tau(tau0)
+                P0 = image_pdf(pi[None, :], pr.p_bar[:, None], tau0)
+                info["zeta0"] = self.zeta_from_V(V0_l) if not nofudge else np.full(nl, z0)
+            else:
+                tau0 = None
+                P0 = image_pdf(pi[None, :], pr.p_bar[:, None], tau0_l[:, None])
+                V0_l = np.full(nl, V0)
+                info["zeta0"] = np.full(nl, z0)
+        else:
+            P0 = np.zeros((nl, m))
+            for j, pb in enumerate(pr.p_bar):
+                i = min(int(np.floor(pb / h)), n_p - 2)  # p_i <= pb < p_{i+1}
+                a = (p[i + 1] - pb) / h
+                if i >= 1:
+                    P0[j, i - 1] += a / w[i - 1]
+                if i + 1 <= m:
+                    P0[j, i] += (1.0 - a) / w[i]
+            tau0, V0_l = 0.0, np.zeros(nl)
+            info["zeta0"] = np.ones(nl)
+        self._info0 = info
+        self._V0_l = V0_l
+
+        if o["variable"] == "zeta":
+            dVdz = pr.dV_dzeta
+            t0 = float(np.min(info["zeta0"]))
+            t1 = float(self.zeta_out[-1])
+
+            def fun_readable(t, y):
+                P = y.reshape(nl, m)
+                A = P @ w
+                c = 0.5 * fudge.S(A) * float(dVdz(t))
+                return (c[:, None] * laplacian_readable(P, h, order)).ravel()
+
+            def fun(t, y):
+                P = y.reshape(nl, m)
+                c = 0.5 * fudge.S(P @ w) * float(dVdz(t))
+                return (Lb @ y).reshape(nl, m).__imul__(c[:, None]).ravel()
+
+            def jac(t, y):
+                P = y.reshape(nl, m)
+                A = P @ w
+                d = 0.5 * float(dVdz(t))
+                c = d * fudge.S(A)
+                if nofudge:
+                    return Lb * c[0]
+                cp = d * fudge.dS_dA(A)
+                LP = (Lb @ y).reshape(nl, m)
+                blocks = [c[j] * Lm + sp.csr_matrix(np.outer(LP[j], cp[j] * w)) for j in range(nl)]
+                return sp.block_diag(blocks, format="csr")
+
+            return MOLSystem(fun, fun_readable, jac, P0.ravel(), t0, t1, nl, m, False)
+
+        # variable == "tau"
+        t0 = float(tau0)
+        if nofudge:
+            half_L = (0.5 * Lb).tocsr()
+
+            def fun_readable(t, y):
+                return 0.5 * laplacian_readable(y.reshape(nl, m), h, order).ravel()
+
+            def fun(t, y):
+                return half_L @ y
+
+            t1 = float(pr.V(self.zeta_out[-1]))
+            return MOLSystem(fun, fun_readable, half_L, P0.ravel(), t0, t1, nl, m, False)
+
+        n = nl * m
+        S_max = float(np.max(fudge.S(np.linspace(0.0, 1.0, 2001))))
+        V_end = float(pr.V(self.zeta_out[-1]))
+        t1 = t0 + (V_end - float(np.min(V0_l))) * S_max * (1.0 + 1e-6) * 1.01
+        # Jacobian structure: [[L/2 blocks, 0], [rows -S'/S^2 w on own block, 0]]
+        top = sp.hstack([0.5 * Lb, sp.csr_matrix((n, nl))], format="csr")
+        rows = np.repeat(np.arange(nl), m)
+        cols = np.arange(n)
+        bot_pattern = sp.csr_matrix((np.ones(n), (rows, cols)), shape=(nl, n + nl))
+        J = sp.vstack([top, bot_pattern], format="csr")
+        J.sort_indices()
+        bot_start = J.indptr[n]
+
+        def fun_readable(t, y):
+            P = y[:n].reshape(nl, m)
+            A = P @ w
+            return np.concatenate([0.5 * laplacian_readable(P, h, order).ravel(), 1.0 / fudge.S(A)])
+
+        half_top = (0.5 * Lb).tocsr()
+
+        def fun(t, y):
+            out = np.empty_like(y)
+            out[:n] = half_top @ y[:n]
+            out[n:] = 1.0 / fudge.S(y[:n].reshape(nl, m) @ w)
+            return out
+
+        def jac(t, y):
+            A = y[:n].reshape(nl, m) @ w
+            S = fudge.S(A)
+            r = -fudge.dS_dA(A) / (S * S)
+            data = J.data.copy()
+            data[bot_start:] = (r[:, None] * w[None, :]).ravel()
+            return sp.csr_matrix((data, J.indices, J.indptr), shape=J.shape)
+
+        y0 = np.concatenate([P0.ravel(), V0_l])
+        return MOLSystem(fun, fun_readable, jac, y0, t0, t1, nl, m, True)
+
+    def _V_at_tau(self, tau0: float) -> np.ndarray:
+        """Complete-contact variance at which each load's exact effective variance equals ``tau0``."""
+        pr = self.problem
+        if isinstance(pr.fudge, NoFudge):
+            return np.full(pr.n_loads, tau0)
+        S1 = float(pr.fudge.S(np.array(1.0)))
+        out = np.empty(pr.n_loads)
+        V_max = float(pr.V(pr.zeta_max))
+        for j, pb in enumerate(pr.p_bar):
+            if pb / np.sqrt(2.0 * tau0) >= 6.0:  # A* = 1 to round-off until tau0: tau = S(1) V exactly
+                out[j] = tau0 / S1
+                continue
+            sub = pr.with_loads(pb)
+            out[j] = brentq(lambda v, s=sub: float(s.tau_of_V(v)[0]) - tau0, 0.0, 2 * V_max, xtol=1e-300, rtol=1e-15)
+        return out
+
+    # -- the solve --------------------------------------------------------------------------------
+    def _solve(self) -> SolverOutput:
+        pr = self.problem
+        o = self.opts
+        sysm = self.system()
+        p, h, w = self._grid_cache
+        nl, m = sysm.n_loads, sysm.m
+        integ = o["integrator"]
+        tau_scale = float(np.max(pr.tau(pr.zeta_max)))
+        atol = o["atol"] if o["atol"] is not None else o["rtol"] * 1e-2 / np.sqrt(tau_scale)
+        kw = {"method": integ, "rtol": o["rtol"], "atol": atol}
+        if integ in _STIFF:
+            jac = sysm.jac
+            if integ == "LSODA":
+                if sp.issparse(jac):
+                    dense = jac.toarray()
+
+                    def jac(t, y, d=dense):
+                        return d
+
+                else:
+
+                    def jac(t, y, f=jac):
+                        return f(t, y).toarray()
+
+            kw["jac"] = jac
+        if sysm.augmented:
+            atol_v = np.full(sysm.y0.size, atol)
+            atol_v[nl * m :] = o["rtol"] * tau_scale * 1e-2
+            kw["atol"] = atol_v
+        zeta_out = self.zeta_out
+        n_z = zeta_out.size
+
+        if o["variable"] == "zeta":
+            t_eval = zeta_out
+        elif not sysm.augmented:
+            t_eval = np.atleast_1d(pr.V(zeta_out)).astype(float)
+        else:
+            t_eval = None
+        if t_eval is not None and t_eval[0] < sysm.t0:
+            raise ValueError(f"the start-up ({sysm.t0:.6g}) lies beyond the first output station; lower tau0_fraction")
+
+        if sysm.augmented:
+            V_end = float(pr.V(zeta_out[-1]))
+            n = nl * m
+
+            def done(t, y):
+                return float(np.min(y[n:])) - V_end
+
+            done.terminal = True
+            done.direction = 1
+            res = solve_ivp(sysm.fun, (sysm.t0, sysm.t1), sysm.y0, dense_output=True, events=done, **kw)
+            if not res.success or res.status != 1:
+                raise SolverError(f"mol: solve_ivp failed ({res.message})")
+            # station taus per load: V_j(tau) = V(zeta_k), Newton on the dense output (dV/dtau = 1/S)
+            V_out = np.atleast_1d(pr.V(zeta_out)).astype(float)
+            Vs = res.y[n:]  # (nl, n_steps+1), increasing
+            tau_st = np.empty((n_z, nl))
+            for j in range(nl):
+                tau_st[:, j] = np.interp(V_out, Vs[j], res.t)
+            idx = np.arange(nl)
+
+            def at(tau):  # state at the (n_z, nl) taus: V_j and P_j of each load at its own tau
+                Y = res.sol(tau.ravel()).reshape(n + nl, n_z, nl)
+                Vj = Y[n + idx, :, idx].T  # (n_z, nl)
+                Pj = Y[:n].reshape(nl, m, n_z, nl)[idx, :, :, idx].transpose(2, 0, 1)  # (n_z, nl, m)
+                return Vj, Pj
+
+            for _ in range(20):
+                Vj, Pj = at(tau_st)
+                step = (Vj - V_out[:, None]) * pr.fudge.S(Pj @ w)
+                tau_st = np.clip(tau_st - step, res.t[0], res.t[-1])
+                if np.all(np.abs(step) <= 1e-15 * tau_st):
+                    break
+            P = at(tau_st)[1]
+            tau_info = tau_st
+        else:
+            res = solve_ivp(sysm.fun, (sysm.t0, float(t_eval[-1])), sysm.y0, dense_output=True, **kw)
+            if not res.success:
+                raise SolverError(f"mol: solve_ivp failed ({res.message})")
+            Y = res.sol(t_eval)
+            Y[:, -1] = res.y[:, -1]  # the last station is a step point: no interpolation there
+            P = Y.T.reshape(n_z, nl, m)
+            tau_info = t_eval if o["variable"] == "tau" else None
+
+        P_full = np.zeros((n_z, nl, o["n_p"]))
+        P_full[..., 1:-1] = P
+        info = {
+            **self._info0,
+            "grid": p,
+            "h": h,
+            "p_max": p[-1],
+            "order": o["order"],
+            "integrator": integ,
+            "variable": o["variable"],
+            "nfev": int(res.nfev),
+            "njev": int(res.njev),
+            "nlu": int(res.nlu),
+            "steps": int(res.t.size - 1),
+            "t_span": (sysm.t0, float(res.t[-1])),
+            "tau_out": tau_info,
+        }
+        wq = quadrature_weights(o["n_p"], h, o["order"])
+        return SolverOutput(p=p, P0=P_full, weights=wq, kind="point", info=info)

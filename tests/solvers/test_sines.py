@@ -1,0 +1,97 @@
+"""The sine-series solver (Persson's original form, ``eq:P0_solution``) against pf.exact."""
+
+import numpy as np
+import pytest
+
+import persson_fp as pf
+from persson_fp.solvers.sines import SineSeriesSolver, modes_needed, series_area, series_pdf
+
+ZETA_OUT = [1.5, 10.0, 128.0]
+
+
+@pytest.mark.parametrize("fudge", [None, "YP08", "WM17", "Xu24"])
+def test_reference_accuracy(fudge):
+    pr = pf.ContactProblem.reference(fudge=fudge)
+    sol = pf.solve(pr, "sines", zeta_out=ZETA_OUT)
+    cmp = sol.compare()
+    assert cmp.max_L1 <= 1e-10
+    assert cmp.max_area_error <= 1e-11
+    assert np.max(cmp.load_drift) <= 1e-11
+    assert sol.info["zeta0"] == 1.0  # the delta is represented exactly
+    assert not sol.info["checks"]["negative_P0"]
+
+
+def test_tau_from_numerical_area_matches_effective_variance():
+    pr = pf.ContactProblem.reference(fudge="YP08", p_bar_ratio=[0.05, 0.5, 2.0])
+    sol = pf.solve(pr, "sines", zeta_out=ZETA_OUT)
+    tau_ex = pr.tau(np.array(ZETA_OUT))
+    np.testing.assert_allclose(sol.info["tau"], tau_ex, rtol=1e-11)
+
+
+def test_faster_than_any_power():
+    pr = pf.ContactProblem.reference()
+    n = np.array([8, 12, 16, 20])
+    with pytest.warns(RuntimeWarning):  # coarse series: Gibbs undershoot is reported
+        err = np.array([pf.solve(pr, "sines", n_p=int(k), n_eval=400).compare().final()["L1"] for k in n])
+    assert np.all(np.diff(err) < 0)
+    slopes = np.diff(np.log(err)) / np.diff(np.log(n))  # local algebraic order
+    assert np.all(np.diff(slopes) < 0)  # steepens without bound: not a power law
+    assert slopes[-1] < -20
+
+
+def test_auto_modes_and_truncation_bound():
+    pr = pf.ContactProblem.reference()
+    sol = pf.solve(pr, "sines")
+    L = sol.info["p_max"]
+    N = sol.info["n_modes"]
+    assert N == modes_needed(L, float(pr.V()), 1e-13)
+    k = (N + 1) * np.pi / L
+    assert 2 * np.exp(-0.5 * k * k * float(pr.V())) < 1e-13
+
+
+def test_fast_path_equals_readable_series_and_areas():
+    pr = pf.ContactProblem.reference(fudge="WM17", p_bar_ratio=[0.3, 1.0])
+    sol = pf.solve(pr, "sines", zeta_out=[2.0, 128.0])
+    L, N = sol.info["p_max"], sol.info["n_modes"]
+    for i in range(2):
+        for j, pb in enumerate(pr.p_bar):
+            tau = sol.info["tau"][i, j]
+            ref = series_pdf(sol.p, L, pb, tau, N)
+            np.testing.assert_allclose(sol.P0[i, j], ref, rtol=0, atol=1e-11 * ref.max())
+            # area from the series = quadrature of P0 on the Gauss-Legendre grid
+            assert abs(series_area(L, pb, tau, N) - sol.contact_area[i, j]) < 1e-13
+            assert abs(sol.weights @ sol.P0[i, j] - sol.contact_area[i, j]) < 1e-12
+
+
+@pytest.mark.parametrize("fudge", [None, "YP08"])
+def test_batched_loads_equal_single_loads(fudge):
+    ratios = np.geomspace(0.01, 3.0, 5)
+    pr = pf.ContactProblem.reference(fudge=fudge, p_bar_ratio=ratios)
+    batch = pf.solve(pr, "sines", zeta_out=ZETA_OUT)
+    assert batch.compare().max_L1 <= 1e-10
+    for j, pb in enumerate(pr.p_bar):
+        single = pf.solve(pr.with_loads(pb), "sines", zeta_out=ZETA_OUT)
+        np.testing.assert_allclose(batch.contact_area[:, j], single.contact_area, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(batch.info["tau"][:, j], single.info["tau"][:, 0], rtol=1e-12)
+
+
+def test_invariants():
+    pr = pf.ContactProblem.reference(fudge="YP08")
+    z = np.geomspace(1.2, 128.0, 8)
+    sol = pf.solve(pr, "sines", zeta_out=z)
+    assert np.all(np.diff(sol.contact_area) < 0)  # contact is only lost
+    np.testing.assert_allclose(sol.load, pr.p_bar[0], rtol=1e-11)
+    # d<p^2>/dtau = A*: Var = int A* dtau (closed form in tau)
+    var_ex = pf.variance_closed_form(pr.p_bar[0], sol.info["tau"][:, 0])
+    np.testing.assert_allclose(sol.variance, var_ex, rtol=1e-9)
+
+
+def test_options_validated():
+    pr = pf.ContactProblem.reference()
+    with pytest.raises(ValueError, match="n_p"):
+        pf.solve(pr, "sines", n_p=0)
+    with pytest.raises(TypeError, match="n_eval"):
+        pf.solve(pr, "sines", n_evl=10)
+    with pytest.warns(UserWarning, match="n_steps"):
+        pf.solve(pr, "sines", n_steps=10)
+    assert SineSeriesSolver.name == "sines"
