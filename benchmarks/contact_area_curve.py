@@ -30,8 +30,14 @@ def direct_area(fudge, p_bar, V):
 
     S = pf.fudge.resolve(fudge).S
     V0 = 1e-6 * p_bar**2
-    sol = solve_ivp(lambda v, t: S(erf(p_bar / np.sqrt(2 * t))), (V0, V), [float(S(np.array(1.0))) * V0],
-                    method="DOP853", rtol=2.3e-14, atol=1e-20 * p_bar**2)
+    sol = solve_ivp(
+        lambda v, t: S(erf(p_bar / np.sqrt(2 * t))),
+        (V0, V),
+        [float(S(np.array(1.0))) * V0],
+        method="DOP853",
+        rtol=2.3e-14,
+        atol=1e-20 * p_bar**2,
+    )
     return erf(p_bar / np.sqrt(2 * sol.y[0, -1]))
 
 
@@ -63,19 +69,39 @@ def main(argv=None):
         big = pf.ContactProblem(base.psd, 1.0, np.geomspace(1e-3, 3.0, 100_000) * np.sqrt(base.V()), f)
         t_big, _ = median_time(lambda: pf.exact(big).contact_area, repeats)
         summary.append(
-            {"model": name, "method": "exact", "n_loads": 100_000, "time_s": t_big, "loads_per_s": 1e5 / t_big,
-             "ode_setup_s": t_cold, "max_rel_error_vs_direct_ode": rel}
+            {
+                "model": name,
+                "method": "exact",
+                "n_loads": 100_000,
+                "time_s": t_big,
+                "loads_per_s": 1e5 / t_big,
+                "ode_setup_s": t_cold,
+                "max_rel_error_vs_direct_ode": rel,
+            }
         )
-        print(f"exact  {name:5s}: 1e5 loads in {t_big * 1e3:7.2f} ms ({1e5 / t_big:9.3g} loads/s); "
-              f"ODE set-up {t_cold * 1e3:.1f} ms; max rel. error vs direct ODE {rel:.1e}")
+        print(
+            f"exact  {name:5s}: 1e5 loads in {t_big * 1e3:7.2f} ms ({1e5 / t_big:9.3g} loads/s); "
+            f"ODE set-up {t_cold * 1e3:.1f} ms; max rel. error vs direct ODE {rel:.1e}"
+        )
         if "fv" in pf.available_methods():
             opts = {}
             t_pde, sol = median_time(lambda: pf.solve(pr, method="fv", **opts), max(1, repeats // 3))
             err = float(np.max(np.abs(sol.contact_area_all[-1] - ex)))
-            summary.append({"model": name, "method": "fv", "n_loads": n_loads, "time_s": t_pde,
-                            "loads_per_s": n_loads / t_pde, "ode_setup_s": 0.0, "max_abs_area_error": err})
-            print(f"fv     {name:5s}: {n_loads} loads in {t_pde * 1e3:7.1f} ms ({n_loads / t_pde:9.3g} loads/s), "
-                  f"max |dA*| = {err:.2e}")
+            summary.append(
+                {
+                    "model": name,
+                    "method": "fv",
+                    "n_loads": n_loads,
+                    "time_s": t_pde,
+                    "loads_per_s": n_loads / t_pde,
+                    "ode_setup_s": 0.0,
+                    "max_abs_area_error": err,
+                }
+            )
+            print(
+                f"fv     {name:5s}: {n_loads} loads in {t_pde * 1e3:7.1f} ms ({n_loads / t_pde:9.3g} loads/s), "
+                f"max |dA*| = {err:.2e}"
+            )
     write_csv(f"{out}/contact_area_curve.csv", rows)
     write_csv(f"{out}/contact_area_throughput.csv", summary)
     fig = plotting.plot_area_curve(ratio, curves)

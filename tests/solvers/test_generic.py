@@ -33,7 +33,9 @@ def test_missing_extra_names_the_pip_extra(monkeypatch, method, pkg, extra):
         get_solver(method)
 
 
-@pytest.mark.parametrize("method", OWN + GENERIC + ["monte-carlo"] if "monte-carlo" in pf.available_methods() else OWN + GENERIC)
+@pytest.mark.parametrize(
+    "method", OWN + GENERIC + ["monte-carlo"] if "monte-carlo" in pf.available_methods() else OWN + GENERIC
+)
 def test_option_validation(method):
     pr = pf.ContactProblem.reference()
     with pytest.raises(TypeError, match="unknown option"):
