@@ -64,6 +64,18 @@ class Comparison:
     def max_area_error(self) -> float:
         return float(np.max(self.area_error))
 
+    @property
+    def area_z_score(self) -> np.ndarray | None:
+        """|A*_num - A*_exact| in units of the standard error of A* (stochastic methods), else None.
+
+        Shape ``(n_zeta, n_loads)``; inf where the standard error is 0 and the error is not.
+        """
+        if self.stderr_area is None:
+            return None
+        se = np.asarray(self.stderr_area, dtype=float).reshape(self.area_error.shape)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.area_error == 0, 0.0, self.area_error / se)
+
     def final(self) -> dict:
         """Worst case over loads at the last station, as plain floats."""
         return {
