@@ -78,3 +78,38 @@ def test_psd_csv_with_bad_row_names_the_line(tmp_path, capsys):
     rc = main(["report", "--psd-csv", str(f), "--no-solvers", "--output", str(tmp_path)])
     assert rc == 2
     assert "line 3" in capsys.readouterr().err
+
+
+def test_solve_command_outputs_match_exact(tmp_path, capsys):
+    out = tmp_path / "sol.csv"
+    png = tmp_path / "sol.png"
+    rc = main(["solve", "--method", "fv", "--p-bar-ratio", "0.2", "1.0", "--fudge", "YP08",
+               "--output", str(out), "--plot", str(png)])  # fmt: skip
+    assert rc == 0
+    text = capsys.readouterr().out
+    rows = list(csv.reader(open(out)))
+    assert len(rows[0]) == 3 and len(rows) > 50
+    p = np.array([float(r[0]) for r in rows[1:]])
+    P = np.array([[float(v) for v in r[1:]] for r in rows[1:]])
+    pr = pf.ContactProblem.reference(fudge="YP08", p_bar_ratio=np.array([0.2, 1.0]))
+    ex = pf.exact(pr)
+    dp = p[1] - p[0]
+    # the written cell averages integrate to the exact contact area (fv default accuracy ~1e-5)
+    np.testing.assert_allclose(P.sum(axis=0) * dp, ex.contact_area, atol=2e-5)
+    assert png.stat().st_size > 1000
+    assert "A* (exact)" in text
+
+
+def test_solve_json_and_bad_method(tmp_path, capsys):
+    import json
+
+    out = tmp_path / "s.json"
+    assert main(["solve", "--method", "sines", "--output", str(out)]) == 0
+    data = json.load(open(out))
+    A = pf.exact(pf.ContactProblem.reference()).contact_area
+    assert data["contact_area"][0] == pytest.approx(A, abs=1e-10)
+    capsys.readouterr()
+    assert main(["solve", "--method", "fvv"]) == 2
+    assert "method must be one of" in capsys.readouterr().err
+    assert main(["solve", "--method", "fv", "--n-p", "3"]) == 2
+    assert "n_p" in capsys.readouterr().err

@@ -92,7 +92,11 @@ class Comparison:
                 f"{z:10.4g} {np.max(self.L1[i]):10.3e} {np.max(self.Linf[i]):10.3e} "
                 f"{np.max(self.area_error[i]):10.3e} {np.max(self.load_drift[i]):10.3e}"
             )
-        return "\n".join(rows) + f"\n(worst over {self.p_bar.size} load(s); reference: {self.reference})"
+        tail = f"\n(worst over {self.p_bar.size} load(s); reference: {self.reference})"
+        z = self.area_z_score
+        if z is not None:
+            tail += f"\n|dA*| in standard errors (stochastic method): max {np.max(z):.2f}"
+        return "\n".join(rows) + tail
 
 
 @dataclass(frozen=True)
