@@ -94,3 +94,120 @@ def plot_error_vs_time(rows, ax=None, error_key="L1"):
     ax.legend(fontsize=8)
     ax.grid(True, which="both", lw=0.3)
     return fig
+
+
+# -- helpers for the notebooks (added with issue 6) -------------------------------------------------------------------
+__all__ += ["plot_psd", "plot_pdf_histogram"]
+
+
+def plot_psd(psds: dict, ax=None, n_q: int = 400, mark_cutoffs: bool = True):
+    """C(q) on log-log axes (seed Fig. A.1); ``psds`` maps a label to a PSD (``SelfAffinePSD`` or ``TabulatedPSD``).
+
+    A tabulated spectrum is drawn at its table points (markers) plus its log-log interpolant; the cut-offs
+    q_l, q_s (and q_r where the PSD has one) of the first spectrum are marked by vertical lines.
+    """
+    fig, ax = _axes(ax)
+    for k, (label, psd) in enumerate(psds.items()):
+        q = np.geomspace(psd.q_l, psd.q_s, n_q)
+        (line,) = ax.loglog(q, psd.C(q), lw=1.2, label=label, color=f"C{k}")
+        table_q = getattr(psd, "q", None)
+        if table_q is not None:
+            inside = (table_q >= psd.q_l) & (table_q <= psd.q_s)
+            ax.loglog(table_q[inside], psd.values[inside], "o", ms=2.5, color=line.get_color())
+    if mark_cutoffs and psds:
+        first = next(iter(psds.values()))
+        for name in ("q_l", "q_r", "q_s"):
+            val = getattr(first, name, None)
+            if val is not None:
+                ax.axvline(val, color="0.6", lw=0.8, ls=":")
+                ax.annotate(
+                    name,
+                    (val, 1.0),
+                    xycoords=("data", "axes fraction"),
+                    xytext=(2, -12),
+                    textcoords="offset points",
+                    fontsize=8,
+                    color="0.4",
+                )
+    ax.set_xlabel("q [1/length]")
+    ax.set_ylabel(r"$C(q)$ [length$^4$]")
+    ax.legend(fontsize=8)
+    return fig
+
+
+def plot_pdf_histogram(bin_lo, bin_hi, density, ax=None, scale: float = 1.0, label=None, **kwargs):
+    """A pressure histogram (e.g. a boundary-element one) as a step line, p in units of ``scale``.
+
+    ``density`` is per unit pressure (so that sum(density * (bin_hi - bin_lo)) is the contact area);
+    it is drawn as ``density * scale`` against ``p / scale``.
+    """
+    fig, ax = _axes(ax)
+    lo = np.asarray(bin_lo, float) / scale
+    hi = np.asarray(bin_hi, float) / scale
+    d = np.asarray(density, float) * scale
+    edges = np.append(lo, hi[-1])
+    ax.stairs(d, edges, label=label, **kwargs)
+    return fig
+
+
+# -- helpers for notebooks 01, 05, 07 (issue 7) -----------------------------------------------------------------------
+__all__ += ["plot_atom", "plot_pdf_waterfall"]
+
+
+def plot_atom(ax, weight, height, x: float = 0.0, color=None, label=None, text: bool = True, fontsize: int = 8):
+    """A delta atom of probability ``weight`` at ``x`` drawn as an arrow of length ``height``, its weight written on it.
+
+    ``height`` is in the axes' data units (choose it proportional to ``weight`` to make lengths comparable,
+    e.g. ``weight * P0_peak``); the axes' data limits are extended to include the arrow.
+    """
+    ax.annotate("", xy=(x, height), xytext=(x, 0.0), arrowprops=dict(arrowstyle="-|>", color=color or "C0", lw=1.6))
+    if label is not None:  # a legend entry for the arrow
+        ax.plot([], [], color=color or "C0", lw=1.6, marker="^", label=label)
+    if text:
+        ax.annotate(
+            f"{weight:.3g}",
+            (x, height),
+            xytext=(3, 2),
+            textcoords="offset points",
+            fontsize=fontsize,
+            color=color or "C0",
+        )
+    ax.update_datalim([(x, 0.0), (x, height)])
+    ax.autoscale_view()
+    return ax.figure
+
+
+def plot_pdf_waterfall(problem: ContactProblem, zetas, ax=None, n_p: int = 300, k: float = 4.0):
+    """Seed Fig. 2(b): the exact P0(p, zeta) as a 3-D waterfall over log10(zeta), p in units of sqrt(V(zeta_max)).
+
+    The atom 1 - A* at p = 0 (``eq:PDF_piecewise_explicit``) is a vertical stem whose length is its weight
+    times the largest P0 drawn; the delta(p - p_bar) of zeta = 1 (weight 1) is drawn the same way when
+    ``zetas`` contains 1.  Returns the figure; the axes must be 3-D if given.
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        fig = plt.figure(figsize=(7.5, 5.0), layout="constrained")
+        ax = fig.add_subplot(projection="3d")
+    zetas = np.atleast_1d(np.asarray(zetas, float))
+    pb = float(problem.p_bar[0])
+    scale = float(np.sqrt(problem.V()))
+    p = np.linspace(0.0, pb + k * scale, n_p)
+    smooth = zetas[zetas > 1.0]
+    ex = exact(problem.with_loads(pb), smooth)
+    P = np.atleast_2d(ex.pdf(p)) * scale
+    A = np.atleast_1d(ex.contact_area)
+    top = float(np.max(P)) if P.size else 1.0
+    for z, Pz, Az in zip(smooth, P, A):
+        y = np.full_like(p, np.log10(z))
+        ax.plot(p / scale, y, Pz, color="C3", lw=1.0)
+        ax.plot([0.0, 0.0], [y[0], y[0]], [0.0, (1.0 - Az) * top], color="C0", lw=2.0)
+        ax.scatter([0.0], [y[0]], [(1.0 - Az) * top], color="C0", marker="^", s=12)
+    if np.any(zetas <= 1.0):
+        ax.plot([pb / scale] * 2, [0.0, 0.0], [0.0, top], color="C3", lw=2.0)
+        ax.scatter([pb / scale], [0.0], [top], color="C3", marker="^", s=12)
+    ax.set_xlabel(r"$p/\sqrt{V(\zeta_{max})}$")
+    ax.set_ylabel(r"$\log_{10}\zeta$")
+    ax.set_zlabel(r"$P_0\,\sqrt{V(\zeta_{max})}$")
+    ax.set_title("P0(p, ζ) (red) and the atom 1 − A* at p = 0 (blue, length = weight × max P0)", fontsize=9)
+    return ax.figure

@@ -1,0 +1,66 @@
+"""Execute every notebook in notebooks/ (examples are tests: each ends with an assert cell).
+
+Needs the ``notebooks`` extra (nbclient, nbformat, ipykernel); skipped cleanly without it. The kernel is
+``python3``: jupyter_client resolves the native kernel's ``python`` to ``sys.executable``, so the notebooks
+run in the interpreter that runs pytest (checked by ``test_kernel_is_this_interpreter``).
+"""
+
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+NOTEBOOK_DIR = Path(__file__).resolve().parents[1] / "notebooks"
+NOTEBOOKS = sorted(NOTEBOOK_DIR.glob("*.ipynb"))
+CELL_TIMEOUT_S = 120
+
+
+def _execute(nb):
+    nbclient = pytest.importorskip("nbclient")
+    pytest.importorskip("ipykernel")
+    client = nbclient.NotebookClient(
+        nb,
+        timeout=CELL_TIMEOUT_S,
+        kernel_name="python3",
+        resources={"metadata": {"path": str(NOTEBOOK_DIR)}},
+    )
+    client.execute()  # a cell error raises CellExecutionError and fails the test
+    return nb
+
+
+def _summary(nb):
+    """The numbers the notebook formats for its closing text (display metadata of the cell tagged 'summary')."""
+    for cell in nb.cells:
+        if "summary" in cell.metadata.get("tags", []):
+            for out in cell.get("outputs", []):
+                if "summary" in out.get("metadata", {}):
+                    return out["metadata"]["summary"]
+    return None
+
+
+def test_notebooks_found():
+    assert NOTEBOOKS, f"no notebooks in {NOTEBOOK_DIR}"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
+def test_notebook_executes(path):
+    nbformat = pytest.importorskip("nbformat")
+    nb = _execute(nbformat.read(path, as_version=4))
+    assert nb.cells[0].cell_type == "markdown", "a notebook opens with a markdown cell stating its question"
+    assert nb.cells[-1].cell_type == "markdown", "a notebook closes with a markdown cell saying what it shows"
+    summary = _summary(nb)
+    if summary is not None:  # the closing text quotes these numbers: stale text means regenerate the notebook
+        closing = nb.cells[-1].source
+        stale = {k: v for k, v in summary.items() if str(v) not in closing}
+        assert not stale, f"{path.name}: closing text does not quote the recomputed {stale}"
+
+
+def test_kernel_is_this_interpreter():
+    nbformat = pytest.importorskip("nbformat")
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_code_cell("import json, sys; print(json.dumps([sys.executable, sys.prefix]))")]
+    nb = _execute(nb)
+    kernel_python, kernel_prefix = json.loads(nb.cells[0].outputs[0]["text"])
+    # compare the environments (prefix), not resolved paths: a venv's python is a symlink to the base interpreter
+    assert kernel_prefix == sys.prefix, f"kernel runs {kernel_python} (prefix {kernel_prefix}), pytest {sys.executable}"
