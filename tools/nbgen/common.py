@@ -1,4 +1,5 @@
 """Shared machinery of the notebook generators: build, execute twice, fill the closing text, save."""
+
 import json
 import string
 import time
@@ -21,7 +22,9 @@ def _cell(kind, src, tags=()):
 
 def _execute(nb):
     t = time.perf_counter()
-    client = NotebookClient(nb, timeout=120, kernel_name="python3", record_timing=False, resources={"metadata": {"path": str(NB_DIR)}})
+    client = NotebookClient(
+        nb, timeout=120, kernel_name="python3", record_timing=False, resources={"metadata": {"path": str(NB_DIR)}}
+    )
     client.execute()
     return time.perf_counter() - t
 
@@ -61,6 +64,7 @@ def build(name, cells, closing_template):
     nbformat.write(nb2, path)
     # lint/format the sources in place (import sorting, line wrapping: semantics unchanged, outputs stay valid)
     import subprocess
+
     ruff = "/work/main/.venv/bin/ruff"
     subprocess.run([ruff, "check", "--fix", "-q", str(path)], cwd="/work/main", check=False)
     subprocess.run([ruff, "format", "-q", str(path)], cwd="/work/main", check=True)

@@ -1,7 +1,9 @@
 from common import build
 
 CELLS = [
-("md", r"""
+    (
+        "md",
+        r"""
 # 02 — Contact area and pressure variance (exact, all fudge models)
 
 **Question.** How much of the nominal area is in contact, $A^*$, as a function of the load $\bar p$ and of the
@@ -14,8 +16,11 @@ Everything here is the **exact** solution (`pf.exact`), no numerical solver:
   $A^*\approx\sqrt{2/\pi}\,\bar p/\sqrt{V}$ (`eq:Asymptote_1`), $\mathrm{Var}(p)=\int A^*\,dV$ (`eq:variance_p_form1`);
 * fudge-factor theories, $B_2 = S(A^*)\,dV/d\zeta$ (`eq:new_B2`): the same formulas at the effective variance
   $\tau=\int S\,dV$ instead of $V$ (DESIGN §1), so $A^*=\mathrm{erf}(\bar p/\sqrt{2\tau})$ and $\mathrm{Var}(p)=\int A^*\,d\tau$.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 %matplotlib inline
 import numpy as np
 import matplotlib.pyplot as plt
@@ -32,15 +37,21 @@ E_star = 1.0
 V_max = float(psd.V(E_star=E_star))
 print(psd)
 print(f"V(zeta_max) = {V_max:.4e} (E* units^2), sqrt(V) = {np.sqrt(V_max):.4e}")
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 1. $A^*(\bar p/\sqrt V)$ — the seed's Fig. 5(b)
 
 In every model $A^*$ at a given magnification depends on $\bar p/\sqrt{V(\zeta)}$ alone (for the fudge models this
 follows from the scale-free effective-variance ODE, DESIGN §1). Left: logarithmic load axis with the plain
 asymptote (`eq:Asymptote_1`, dotted); right: linear axis as in the seed's figure.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 ratio = np.geomspace(1e-3, 10.0, 400)  # p_bar / sqrt(V(zeta_max))
 area = {}
 for label, f in MODELS.items():
@@ -70,15 +81,21 @@ scale_free_dev = max(
     for label, f in MODELS.items()
 )
 print(f"max |A*(other surface) - A*(reference surface)| at equal p_bar/sqrt(V), all models: {scale_free_dev:.1e}")
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 2. The small-load asymptote (`eq:Asymptote_1`)
 
 For $\bar p\to0$, $A^*\approx\sqrt{2/\pi}\,\bar p/\sqrt{\tau}$. With a fudge factor $\tau\to S(0)\,V$ at small loads, so the
 slope of $A^*(\bar p)$ is $1/\sqrt{S(0)}$ times the plain one. The relative error of the asymptote grows like
 $x^2/3$ with $x=\bar p/\sqrt{2\tau}$ (next term of the erf series).
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
 rows = ["| model | S(0) | small-load slope / plain slope | 1/√S(0) | p̄/√V where the asymptote is 1 % high |",
         "|---|---|---|---|---|"]
@@ -100,14 +117,20 @@ ax.set_title("relative error of eq:Asymptote_1 (dotted: x²/3)")
 ax.set_ylim(1e-7, 10)
 ax.legend(fontsize=8)
 display(Markdown("\n".join(rows)))
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 3. $A^*(\zeta)$ for several loads
 
 As the magnification grows, more roughness is seen and contact is only ever lost (`eq:Area`): $A^*(\zeta)$ falls
 monotonically from 1 at $\zeta=1$. Loads are given as $\bar p/\sqrt{V(\zeta_{max})}$.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 zeta = np.geomspace(1.0, psd.zeta_max, 300)
 load_ratios = np.array([0.05, 0.2, 0.5, 1.0, 2.0])
 fig, axes = plt.subplots(2, 2, figsize=(11, 7), layout="constrained", sharex=True, sharey=True)
@@ -128,16 +151,22 @@ for ax in axes[:, 0]:
     ax.set_ylabel(r"$A^*(\zeta)$")
 axes[0, 0].legend(fontsize=8)
 print("A*(zeta) non-increasing for every model and load:", monotone)
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 4. Pressure variance $\mathrm{Var}(p)(\zeta)$ (`eq:variance_p_form1`)
 
 $\mathrm{Var}(p)$ over the whole interface (the zeros of the non-contact area included) grows as
 $d\mathrm{Var}/d\zeta = A^*\,B_2 = A^*\,S(A^*)\,dV/d\zeta$. It is bounded by $V(\zeta)$, its value at complete contact.
 `pf.exact` evaluates the closed form in $\tau$; here it is checked against a direct quadrature of
 `eq:variance_p_form1` (with the $S$ factor for the corrected models) on a fine $\zeta$ grid.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 zeta_f = np.geomspace(1.0, psd.zeta_max, 20001)
 V_f = psd.V(zeta_f, E_star)
 dV_f = psd.dV_dzeta(zeta_f, E_star)
@@ -168,8 +197,11 @@ ax1.set_title("approach to complete contact")
 ax1.legend(fontsize=8)
 for label in MODELS:
     print(f"{label:18s} max rel. difference closed form vs quadrature of eq:variance_p_form1: {quad_err[label]:.1e}")
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 # numbers quoted in the closing text (formatted once, here)
 short = {"Persson (None)": "none", "YP08 (γ = 0.45)": "YP08", "WM17 (γ = 5/9)": "WM17", "Xu24 (γ = 0.45)": "Xu24"}
 SUMMARY = {"scale_free_dev": f"{scale_free_dev:.0e}", "quad_err": f"{max(quad_err.values()):.0e}"}
@@ -181,8 +213,12 @@ for label, s in short.items():
     SUMMARY[f"varV_{s}"] = f"{var_over_V[label]:.3f}"
 table = "| quantity | value |\n|---|---|\n" + "\n".join(f"| `{k}` | {v} |" for k, v in SUMMARY.items())
 display(Markdown(table), metadata={"summary": SUMMARY})
-""", ("summary",)),
-("code", r"""
+""",
+        ("summary",),
+    ),
+    (
+        "code",
+        r"""
 # checks: this notebook is a test (tests/test_notebooks.py executes it)
 from scipy.special import erf
 
@@ -197,7 +233,8 @@ assert monotone                                                                 
 assert max(quad_err.values()) < 1e-5                                                   # eq:variance_p_form1
 assert all(0.0 < v < 1.0 for v in var_over_V.values())
 print("all checks passed")
-"""),
+""",
+    ),
 ]
 
 CLOSING = r"""

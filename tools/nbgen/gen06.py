@@ -1,7 +1,9 @@
 from common import build
 
 CELLS = [
-("md", r"""
+    (
+        "md",
+        r"""
 # 06 — Spectrum, heights, slopes, $V(\zeta)$ and elastic energy
 
 **Question.** What does the surface spectrum put into Persson's theory, and how do you bring your own measured
@@ -13,8 +15,11 @@ complete-contact limit (`eq:Uel_complete_2`) — then read a measured, tabulated
 
 The surfaces are those of the boundary-element reference (notebook 09, `data/bem/README.md`): $L=1$,
 $q_l=2\pi$, $q_r=4\cdot2\pi$, $q_s=64\cdot2\pi$, rms slope 0.1, $E^*=1$; plus the logarithmic limits $H=0$ and $H=1$.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 %matplotlib inline
 from pathlib import Path
 
@@ -36,15 +41,21 @@ psds = {H: pf.SelfAffinePSD.from_rms_slope(0.1, H=H, q_l=q_l, q_r=q_r, q_s=q_s) 
 for H, psd in psds.items():
     print(f"H = {H}: C0 = {psd.C0:.4e}, rms height = {psd.rms_height:.4e}, rms slope = {psd.rms_slope:.4f}, "
           f"V = {float(psd.V(E_star=E_star)):.4e}")
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 1. The PSD (seed Fig. A.1)
 
 A plateau $C_0q_r^{-2(1+H)}$ between $q_l$ and the roll-off $q_r$, then the self-affine tail $C_0q^{-2(1+H)}$ up to
 $q_s=\zeta_{max}q_l$. All four spectra are scaled to the same rms slope 0.1, so the rougher (small-$H$)
 spectra carry more power at short wavelengths.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 fig, ax = plt.subplots(figsize=(6.4, 4.4), layout="constrained")
 pfplot.plot_psd({f"H = {H:g}": psd for H, psd in psds.items()}, ax=ax)
 ax.set_title("self-affine PSD with roll-off, rms slope 0.1")
@@ -53,8 +64,11 @@ for H, psd in psds.items():  # log-log slope of the tail, must be -2(1 + H)
     qa, qb = 2 * q_r, q_s / 2
     tail_slopes[H] = float(np.log(psd.C(qb) / psd.C(qa)) / np.log(qb / qa))
 print("tail slopes d ln C / d ln q:", {H: round(s, 12) for H, s in tail_slopes.items()})
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 2. $\langle h^2\rangle(\zeta)$, rms slope and $V(\zeta)$
 
 All three are moments of the spectrum over $[q_l,\zeta q_l]$: $\langle h^2\rangle = 2\pi\int qC\,dq$,
@@ -62,8 +76,11 @@ $\langle|\nabla h|^2\rangle=2\pi\int q^3C\,dq$. The height is set by the long wa
 soon after the roll-off), the slope — and with it $V$ and the contact area — by the short ones (for $H<1$ it
 keeps growing up to $q_s$). The package evaluates them in closed form, with the logarithmic limits at $H=0$ (heights)
 and $H=1$ (slopes); here they are checked against direct numerical quadrature of $C(q)$.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 zeta = np.geomspace(1.0, q_s / q_l, 300)
 fig, axes = plt.subplots(1, 3, figsize=(13, 4), layout="constrained")
 quad_dev = 0.0
@@ -92,16 +109,22 @@ print(f"closed forms vs quadrature: max relative deviation {quad_dev:.1e}")
 for H in HURST:
     print(f"H = {H:g}: below q_r: {h2_from_plateau[H]:.3f} of <h^2>, {V_from_plateau[H]:.3f} of V; "
           f"last octave: {V_last_octave[H]:.3f} of V")
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 3. Elastic energy $U_{el}(\bar p)$ (`eq:Uel_original`)
 
 $U_{el}/A_n=\frac{\pi E^*}{2}\int_{q_l}^{q_s} q^2C(q)\,A^*(\bar p,q/q_l)\,S(A^*)\,dq$ (`pf.elastic_energy`; $S=1$ for
 Persson's theory). At complete contact ($A^*=1$ at every scale) it becomes
 $\frac{\pi E^*}{2}\int q^2C\,dq$ (`eq:Uel_complete_2`, `psd.elastic_energy_complete`). Below: $H=0.8$, all fudge models,
 $U_{el}$ relative to the complete-contact value.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 MODELS = {"Persson (None)": None, "YP08 (γ = 0.45)": "YP08", "WM17 (γ = 5/9)": "WM17", "Xu24 (γ = 0.45)": "Xu24"}
 psd = psds[0.8]
 V_max = float(psd.V(E_star=E_star))
@@ -134,30 +157,42 @@ U_half = float(pf.elastic_energy(pf.ContactProblem(psd, E_star, p_check)))
 print(f"U_el at p/sqrt(V) = 0.5: pf.elastic_energy {U_half:.10e}, direct quadrature {manual:.10e}")
 print(f"relative difference {U_half / manual - 1:.1e}")
 print("U_el / U_complete at p/sqrt(V) = 30:", {k: f"{v[-1] / U_c:.6f}" for k, v in U.items()})
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 4. A measured spectrum from a CSV file
 
 Users bring a table $q$, $C(q)$. Here: the realised, shell-averaged PSD of one of the boundary-element
 surfaces (`data/bem/psd_shells_H0.8_seed1.csv`). Such files often need cleaning — this one starts with the mean
 (shell $n=0$, $q=0$), and beyond $|k|=64$ it holds only round-off ($C\sim10^{-45}$). `TabulatedPSD.from_csv` refuses
 $q=0$ with a message naming the line:
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 path = DATA / "psd_shells_H0.8_seed1.csv"
 print("".join(path.read_text().splitlines(keepends=True)[:4]))
 try:
     pf.TabulatedPSD.from_csv(path, q_column="q", C_column="C_shell_avg")
 except ValueError as err:
     print("ValueError:", err)
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 Two ways to clean it: (a) read the columns yourself and keep the band $1\le n\le64$, or (b) write a cleaned CSV and
 use `from_csv`. Both give the same spectrum. The table's own cumulative column `V_cum` is the *discrete* sum over
 Fourier modes; `TabulatedPSD` integrates the log-log interpolant of the shell averages, a continuum
 approximation of that sum — the small difference in $V$ printed below is that approximation, not an error of the data.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 import csv
 import tempfile
 
@@ -199,8 +234,11 @@ A_nom = pf.exact(pf.ContactProblem(psd, E_star, p, fudge="YP08"), zeta=z)
 dev_A = np.abs(A_meas.contact_area / A_nom.contact_area - 1.0)
 print(f"YP08 A* at zeta_max: measured {A_meas.contact_area[-1]:.5f}, nominal {A_nom.contact_area[-1]:.5f}; "
       f"largest relative difference along zeta {dev_A.max():.1%}")
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 SUMMARY = {
     "quad_dev": f"{quad_dev:.0e}",
     "h2_plateau_08": f"{h2_from_plateau[0.8]:.2f}",
@@ -220,8 +258,12 @@ SUMMARY["V_tab_dev"] = f"{V_tab / V_file - 1:+.2%}"
 SUMMARY["A_dev"] = f"{dev_A.max():.1%}"
 display(Markdown("| quantity | value |\n|---|---|\n" + "\n".join(f"| `{k}` | {v} |" for k, v in SUMMARY.items())),
         metadata={"summary": SUMMARY})
-""", ("summary",)),
-("code", r"""
+""",
+        ("summary",),
+    ),
+    (
+        "code",
+        r"""
 # checks: this notebook is a test (tests/test_notebooks.py executes it)
 for H, s in tail_slopes.items():
     assert abs(s + 2 * (1 + H)) < 1e-10, H                          # E:PSD tail exponent
@@ -233,7 +275,8 @@ assert all(np.all(np.diff(v) >= 0) for v in U.values())               # U_el nev
 assert all(abs(v[-1] / U_c - 1.0) < 1e-3 for v in U.values())         # complete-contact limit eq:Uel_complete_2
 assert same and abs(V_file - 0.0025) < 1e-12 and abs(V_tab / V_file - 1.0) < 0.03
 print("all checks passed")
-"""),
+""",
+    ),
 ]
 
 CLOSING = r"""

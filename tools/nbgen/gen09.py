@@ -1,7 +1,9 @@
 from common import build
 
 CELLS = [
-("md", r"""
+    (
+        "md",
+        r"""
 # 09 — How good is the theory? Persson and its corrections against boundary-element solutions
 
 **Question.** How close are the contact area $A^*$ and the contact-pressure PDF $P_0(p)$ of Persson's theory
@@ -16,8 +18,11 @@ taken into account below:** $A^*$ converges at first order in the grid spacing, 
 *high* (≈1.5–5 %); we compare with the Richardson-extrapolated value. The seeds scatter by up to ≈6 %. Each theory is
 evaluated with the nominal spectrum (`pf.SelfAffinePSD`) and with each surface's realised spectrum (`pf.TabulatedPSD`
 from `psd_shells_*.csv`).
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 %matplotlib inline
 from pathlib import Path
 
@@ -51,8 +56,11 @@ def bem(H, N, seed, load, col="Astar"):
 print(f"{runs.size} BEM runs; loads p/(E* g) = {LOADS}")
 print("tags:", {t: int(np.sum(runs['tag'] == t)) for t in np.unique(runs['tag'])})
 print("V of every surface:", np.unique(np.round(runs["V"], 12)))
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 1. The BEM reference and its own error
 
 Per surface and load: the production value at $N=1024$, and where the resolution runs exist, the first-order
@@ -60,8 +68,11 @@ Richardson extrapolation $A^*_R = 2A^*_{fine} - A^*_{coarse}$ from the finest pa
 512/1024). The observed order $\log_2\frac{A_{512}-A_{1024}}{A_{1024}-A_{2048}}$ checks that the convergence is first
 order. The **reference** for each $H$ and load is the seed mean at $N=1024$ times the mean Richardson correction factor
 $A^*_R/A^*_{1024}$ of the seeds that have one; the **seed scatter** is the sample std/mean of the three $N=1024$ values.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 ref, ref_src, scatter, res_err, order = {}, {}, {}, {}, {}
 A1024 = {H: np.array([[bem(H, 1024, s, L) for L in LOADS] for s in SEEDS]) for H in HS}  # (seed, load)
 for H in HS:
@@ -106,8 +117,11 @@ for ax, H in zip(axes, HS):
     ax.set_title(f"BEM resolution error, H = {H}, seed 1")
     ax.grid(lw=0.3, which="both")
     ax.legend(fontsize=7)
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 2. The theories
 
 $\bar p = (\bar p/E^*\bar g)\,E^*\bar g$. With the nominal spectrum every surface has $V=0.0025$ and one $A^*$ per model;
@@ -115,8 +129,11 @@ with the realised spectra (`TabulatedPSD`, after dropping the $q=0$ row and the 
 notebook 06) each seed gets its own. Note: at $\zeta_{max}$, $A^*$ and $P_0$ depend on the spectrum **only through
 $V(\zeta_{max})$** in every model here (DESIGN §1), so the realised spectrum changes them only as much as its
 continuum $V$ differs from 0.0025 (the shell table integrates to a slightly smaller $V$, see notebook 06).
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 MODELS = {
     "Persson": None,
     "YP08 γ=0.42": pf.fudge.YangPersson(gamma=0.42),
@@ -144,16 +161,22 @@ for H in HS:
     shift = A_tab[(H, "YP08 γ=0.45")] / A_nom[(H, "YP08 γ=0.45")] - 1.0
     print(f"H = {H}: V of the realised spectra {np.round(Vt, 6)}; A*(tabulated)/A*(nominal) - 1 = "
           f"{shift.min():+.2%} .. {shift.max():+.2%}")
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 3. Contact area against the BEM
 
 Top: $A^*$ against the load (grey dots: the three BEM surfaces at $N=1024$; black squares: the Richardson reference;
 lines: theories with the nominal spectrum; shaded: the YP08 band $\gamma$ = 0.42–0.48). Bottom: relative error against the
 reference; the grey band is the seed scatter (±1 std/mean) and the grey crosses show where plain $N=1024$ BEM would put
 the zero line — the size of the error one makes by comparing with unextrapolated BEM.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 colors = {"Persson": "C0", "YP08 γ=0.45": "C1", "WM17": "C2", "Xu24": "C3"}
 fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), layout="constrained", sharex=True)
 rel = {(H, m): A_nom[(H, m)] / ref[H] - 1.0 for H in HS for m in MODELS}
@@ -180,14 +203,20 @@ for col, H in enumerate(HS):
     axr.grid(lw=0.3, which="both")
 axes[0, 0].legend(fontsize=7)
 axes[1, 0].legend(fontsize=7, loc="lower right")
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ### Relative error of $A^*$ against the Richardson-extrapolated BEM value
 
 Nominal spectrum; the last rows give the BEM's own uncertainty for comparison, and how much the realised spectra
 (`TabulatedPSD`) shift the YP08 value.
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 for H in HS:
     head = "| model | " + " | ".join(f"{L:g}" for L in LOADS) + " | mean abs |"
     rows = [f"**H = {H}**, columns: p̄/(E*ḡ)", "", head, "|---" * (LOADS.size + 2) + "|"]
@@ -198,14 +227,20 @@ for H in HS:
     rows.append("| *BEM N=1024 vs ref* | " + " | ".join(f"{v:+.1%}" for v in res_err[H]) + " | |")
     rows.append("| *BEM seed scatter* | " + " | ".join(f"±{v:.1%}" for v in scatter[H]) + " | |")
     display(Markdown("\n".join(rows)))
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 4. Pressure variance
 
 $\mathrm{Var}(p)$ over the whole interface (zeros included), theory (`eq:variance_p_form1`, `pf.exact(...).variance`)
 against the BEM's `var_p` (seed mean, $N=1024$; unlike $A^*$ it hardly depends on the grid: compare the `res` rows).
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 var_bem = {H: np.array([[bem(H, 1024, s, L, "var_p") for L in LOADS] for s in SEEDS]).mean(axis=0) for H in HS}
 var_res = max(abs(bem(H, 2048, 1, L, "var_p") / bem(H, 1024, 1, L, "var_p") - 1.0)
               for H in HS for L in LOADS if np.isfinite(bem(H, 2048, 1, L)))
@@ -222,8 +257,11 @@ for ax, H in zip(axes, HS):
 axes[0].set_ylabel(r"Var$_{theory}$/Var$_{BEM}$ − 1")
 axes[0].legend(fontsize=8)
 print(f"BEM var_p, N = 2048 vs 1024 (seed 1): at most {var_res:.2%} apart")
-"""),
-("md", r"""
+""",
+    ),
+    (
+        "md",
+        r"""
 ## 5. Pressure PDFs
 
 BEM histograms over the contact points (60 bins of $0.125\sqrt V$; density per unit pressure, so
@@ -232,8 +270,11 @@ $P_0(p,\zeta_{max})$ (`eq:P0_solution` at the effective variance). Thin grey: ea
 $L^1$ distance $\sum_{bins}|\text{density}_{BEM}-\overline{P_0}|\,\Delta p$ with $\overline{P_0}$ the bin average of the
 theory (from `ExactSolution.cdf_contact`), once for the densities as they are (includes the area error) and once for
 the *shapes* $P_0/A^*$ (the PDF of the pressure given contact).
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 def bem_hist(H, load):
     m = (pdfs["H"] == H) & np.isclose(pdfs["pbar_norm"], load)
     sub = pdfs[m]
@@ -289,8 +330,11 @@ for m in MODELS:
     rows.append(f"| {m} | " + " | ".join(f"{v:.3f}" for v in vals) + " |")
 display(Markdown("Mean over the seven loads of the $L^1$ distances to the BEM histograms:\n\n" + "\n".join(rows)))
 print(f"sum(density dp) reproduces A* of runs.csv to {hist_sum_dev:.1e} (beyond the overflow fraction)")
-"""),
-("code", r"""
+""",
+    ),
+    (
+        "code",
+        r"""
 SUMMARY = {}
 for H in HS:
     h = str(H).replace(".", "")
@@ -323,8 +367,12 @@ for H in HS:
 SUMMARY["orders"] = f"{min(order.values()):.2f}–{max(order.values()):.2f}"
 display(Markdown("| quantity | value |\n|---|---|\n" + "\n".join(f"| `{k}` | {v} |" for k, v in SUMMARY.items())),
         metadata={"summary": SUMMARY})
-""", ("summary",)),
-("code", r"""
+""",
+        ("summary",),
+    ),
+    (
+        "code",
+        r"""
 # checks: this notebook is a test (tests/test_notebooks.py executes it)
 from scipy.special import erf
 
@@ -342,7 +390,8 @@ for H in HS:
     assert abs(ref[H][j0] / A1024[H][:, j0].mean() - 1.0 / (1.0 + res_err[H][j0])) < 1e-12
 assert 0.7 < min(order.values()) and max(order.values()) < 1.6                      # first-order convergence
 print("all checks passed")
-"""),
+""",
+    ),
 ]
 
 CLOSING = r"""
