@@ -126,7 +126,7 @@ def test_invariants_and_conservation():
 
 def test_delta_start_and_stiff_vs_explicit():
     pr = pf.ContactProblem.reference()
-    d = pf.solve(pr, "mol", ic="delta", n_p=121)
+    d = pf.solve(pr, "mol", initial="delta", n_p=121)
     assert d.info["zeta0"][0] == 1.0 and d.compare().final()["L1"] < 1e-2
     nfev = {}
     for integ in ("BDF", "RK45"):

@@ -38,7 +38,7 @@ whose exact Jacobian :math:`c_j L + (L P_j)(c_j'\,w)^T` is a rank-one update
 of a banded block -- dense per load (m^2 entries, dense LU): kept for the
 comparison, not as the default.
 
-**Start.**  ``ic="exact"``: the image solution at a small start-up tau0
+**Start.**  ``initial="exact"``: the image solution at a small start-up tau0
 (``tau0_fraction`` of the largest final tau, default automatic: tau0 = 2 h^2,
 enough that the sampled Gaussian is resolved; measured: the final error does
 not depend on tau0 once tau0 >~ h^2, and is O(1) below, where the sampled
@@ -46,7 +46,7 @@ Gaussian loses its mass), converted to zeta0 per load
 through the exact effective-variance map and reported in ``info["zeta0"]``.
 The exact start is part of the reference, so it adds no error of its own;
 the error is then space (O(h^order)) plus time (``rtol``/``atol``).
-``ic="delta"``: the discrete delta (mass and first moment of
+``initial="delta"``: the discrete delta (mass and first moment of
 :math:`\delta(p-\bar p)` split between the two neighbouring nodes) at
 zeta = 1: an O(h^2/tau) start-up error that never fully heals.
 
@@ -159,11 +159,11 @@ class MethodOfLinesSolver(Solver):
         ``solve_ivp`` tolerances (atol in 1/pressure, scaled by 1/sqrt(tau_max) if None).
     variable : {"tau", "zeta"}
         Independent variable (module docstring).
-    ic : {"exact", "delta"}
+    initial : {"exact", "delta"}
         Start from the exact solution at zeta0 or from the discrete delta at zeta = 1.
     zeta0, tau0_fraction : float or None
         Start-up magnification, or tau0 as a fraction of the largest final tau
-        (``ic="exact"``); both None: tau0 = 2 h^2.
+        (``initial="exact"``); both None: tau0 = 2 h^2.
     k_domain : float
         p_max = max(p_bar) + k_domain sqrt(tau(zeta_max)).
     """
@@ -176,7 +176,7 @@ class MethodOfLinesSolver(Solver):
         "rtol": 1e-5,
         "atol": None,
         "variable": "tau",
-        "ic": "exact",
+        "initial": "exact",
         "zeta0": None,
         "tau0_fraction": None,
         "k_domain": 10.0,
@@ -195,10 +195,10 @@ class MethodOfLinesSolver(Solver):
             o["atol"] = check_float(o["atol"], "atol", 0.0, np.inf)
         if o["variable"] not in ("tau", "zeta"):
             raise ValueError(f"variable must be 'tau' or 'zeta', got {o['variable']!r}")
-        if o["ic"] not in ("exact", "delta"):
-            raise ValueError(f"ic must be 'exact' or 'delta', got {o['ic']!r}")
-        if o["ic"] == "delta" and (o["zeta0"] is not None or o["tau0_fraction"] is not None):
-            raise ValueError("zeta0 / tau0_fraction apply to ic='exact' only")
+        if o["initial"] not in ("exact", "delta"):
+            raise ValueError(f"initial must be 'exact' or 'delta', got {o['initial']!r}")
+        if o["initial"] == "delta" and (o["zeta0"] is not None or o["tau0_fraction"] is not None):
+            raise ValueError("zeta0 / tau0_fraction apply to initial='exact' only")
         o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 1e3)
 
     # -- grid and start ---------------------------------------------------------------------------
@@ -213,7 +213,7 @@ class MethodOfLinesSolver(Solver):
         return p, p[1] - p[0]
 
     def _start(self, h):
-        """Start-up (zeta0 per load, tau0 per load, V0 per load) for ``ic="exact"``."""
+        """Start-up (zeta0 per load, tau0 per load, V0 per load) for ``initial="exact"``."""
         pr = self.problem
         o = self.opts
         tau_max = pr.tau(pr.zeta_max)
@@ -248,7 +248,7 @@ class MethodOfLinesSolver(Solver):
         info = {}
 
         # initial data
-        if o["ic"] == "exact":
+        if o["initial"] == "exact":
             z0, V0, tau0_l = self._start(h)
             if o["variable"] == "tau":
                 tau0 = float(np.max(tau0_l))  # common tau0; each load's V_j0 from the exact map
