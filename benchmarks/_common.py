@@ -70,3 +70,90 @@ def progress(i: int, n: int, label: str) -> None:
     if i >= n:
         sys.stderr.write("\n")
     sys.stderr.flush()
+
+
+# -- shared by speed_accuracy.py, convergence.py and stability.py ------------------------------------
+OWN_METHODS = ("fv", "mol", "sines")
+"""persson-fp's own solvers (the ones the generic tools are compared with)."""
+
+
+def have(method: str) -> bool:
+    """Whether ``method`` is built and its optional packages are installed (by name)."""
+    import persson_fp as pf
+
+    return method in pf.available_methods()
+
+
+def errors_of(sol) -> dict:
+    """L1, Linf of P0, |dA*| and load drift at the last station (worst over loads)."""
+    c = sol.compare().final()
+    return {"L1": c["L1"], "Linf": c["Linf"], "area_error": c["area_error"], "load_drift": c["load_drift"]}
+
+
+def timed_solve(problem, method: str, options: dict, repeats: int, slow_s: float = 1.0, very_slow_s: float = 10.0):
+    """Solve once untimed (warm-up), then ``repeats`` times; medians of the solver's wall time
+    (``sol.wall_time``, compile time excluded), of the whole ``pf.solve`` call and of
+    ``info["compile_time"]`` where the method reports one.
+
+    Runs whose warm-up call took longer than ``slow_s`` are repeated at most 3 times, longer than
+    ``very_slow_s`` once (the row's ``repeats`` says how often).  Returns (row dict, last Solution);
+    a solver error gives a row with ``status`` = the exception's class and message and Solution None.
+    """
+    import warnings
+
+    import persson_fp as pf
+
+    row = {"method": method, "options": repr(options)}
+    wall, call, comp = [], [], []
+    sol = None
+    n = 0
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            t0 = time.perf_counter()
+            sol = pf.solve(problem, method, **options)
+            first = time.perf_counter() - t0
+            n = repeats if first <= slow_s else (min(repeats, 3) if first <= very_slow_s else 1)
+            if first > very_slow_s:  # the warm-up call is the only timed one
+                wall.append(sol.wall_time)
+                call.append(first)
+                comp.append(sol.info.get("compile_time", np.nan))
+            else:
+                for _ in range(n):
+                    t0 = time.perf_counter()
+                    sol = pf.solve(problem, method, **options)
+                    call.append(time.perf_counter() - t0)
+                    wall.append(sol.wall_time)
+                    comp.append(sol.info.get("compile_time", np.nan))
+    except Exception as err:  # noqa: BLE001 - a benchmark records what went wrong and goes on
+        row.update(status=f"{type(err).__name__}: {err}", repeats=n)
+        return row, None
+    row.update(
+        status="ok",
+        repeats=len(wall),
+        wall_time=statistics.median(wall),
+        call_time=statistics.median(call),
+        compile_time=float(np.nanmedian(comp)) if np.any(np.isfinite(comp)) else np.nan,
+        n_p=int(sol.p.size),
+        steps=sol.info.get("steps"),
+        **errors_of(sol),
+    )
+    return row, sol
+
+
+def fit_order(h, err, n_last: int = 3, floor: float = 1e-13) -> float:
+    """Slope of log(err) against log(h) over the ``n_last`` finest points above ``floor`` (NaN if < 2)."""
+    h = np.asarray(h, float)
+    err = np.asarray(err, float)
+    ok = np.isfinite(err) & np.isfinite(h) & (h > 0) & (err > floor)
+    h, err = h[ok], err[ok]
+    if h.size < 2:
+        return float("nan")
+    idx = np.argsort(h)[:n_last]
+    return float(np.polyfit(np.log(h[idx]), np.log(err[idx]), 1)[0])
+
+
+def markdown_table(header: list[str], rows: list[list]) -> str:
+    out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
+    return "\n".join(out)

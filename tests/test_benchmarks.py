@@ -1,0 +1,93 @@
+"""The benchmark scripts' --quick modes run and produce sane CSV/PNG output (no timing assertions)."""
+
+from __future__ import annotations
+
+import csv
+import importlib
+import os
+import sys
+
+import pytest
+
+BENCH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "benchmarks")
+
+pytestmark = pytest.mark.filterwarnings("ignore")
+
+
+def _module(name):
+    if BENCH not in sys.path:
+        sys.path.insert(0, BENCH)
+    return importlib.import_module(name)
+
+
+def _rows(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _png(path):
+    assert os.path.getsize(path) > 1000
+    with open(path, "rb") as fh:
+        assert fh.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_speed_accuracy_quick(tmp_path):
+    rows, table = _module("speed_accuracy").main(["--quick", "--output", str(tmp_path)])
+    for name in ("speed_accuracy.csv", "speed_accuracy_table.csv", "speed_accuracy.md"):
+        assert (tmp_path / name).exists()
+    _png(tmp_path / "speed_accuracy.png")
+    csv_rows = _rows(tmp_path / "speed_accuracy.csv")
+    assert len(csv_rows) == len(rows) > 10
+    ok = [r for r in rows if r["status"] == "ok"]
+    assert {"fv", "mol", "sines"} <= {r["method"] for r in ok}
+    for r in ok:
+        assert r["wall_time"] > 0 and r["repeats"] >= 1
+        assert 0 <= r["L1"] < 2.5 and r["load_drift"] < 1
+    # fv reaches L1 <= 1e-5 without a fudge factor and with YP08
+    for fz in ("none", "YP08"):
+        assert min(r["L1"] for r in ok if r["method"] == "fv" and r["fudge"] == fz) <= 1e-5
+    # sines is spectral: 1e-7 reached without a fudge factor
+    hit = [t for t in table if t["label"] == "sines" and t["fudge"] == "none" and t["threshold"] == 1e-7]
+    assert hit and hit[0]["reached"]
+    assert "L1 <= 1e-05" in (tmp_path / "speed_accuracy.md").read_text()
+
+
+def test_convergence_quick(tmp_path):
+    rows, orders = _module("convergence").main(["--quick", "--output", str(tmp_path)])
+    assert (tmp_path / "convergence.csv").exists() and (tmp_path / "convergence_orders.csv").exists()
+    _png(tmp_path / "convergence.png")
+    got = {(o["label"], o["direction"]): o["observed"] for o in orders}
+    assert abs(got[("fv fv2 (tr-bdf2)", "p")] - 2) < 0.3
+    assert abs(got[("fv compact4 (tr-bdf2)", "p")] - 4) < 0.5
+    assert abs(got[("fv implicit", "step")] - 1) < 0.2
+    assert abs(got[("fv crank-nicolson", "step")] - 2) < 0.3
+    assert abs(got[("fv tr-bdf2", "step")] - 2) < 0.3
+    assert got[("sines", "modes")] < -0.1  # log10 L1 falls by a fixed amount per mode
+    assert len(_rows(tmp_path / "convergence_orders.csv")) == len(orders)
+
+
+def test_stability_quick(tmp_path):
+    res = _module("stability").main(["--quick", "--output", str(tmp_path)])
+    for name in ("explicit", "onsets", "ringing", "smearing", "mol", "coupling"):
+        assert len(_rows(tmp_path / f"stability_{name}.csv")) > 0
+    _png(tmp_path / "stability_map.png")
+    _png(tmp_path / "stability.png")
+    ex = res["explicit"]
+    # r = 2 is flagged unstable, r = 0.1 is stable, for both space discretisations and starts
+    for r in ex:
+        if r["method"] == "fv" and r["r_target"] == 2.0:
+            assert r["outcome"] == "blown-up" and r["raised"] == "InstabilityError"
+            assert r["spectral_radius"] > 1
+        if r["method"] == "fv" and r["r_target"] == 0.1 and r["initial"] == "exact":
+            assert r["outcome"] == "stable"
+    # Crank-Nicolson from a delta rings at large r, backward Euler does not
+    ring = res["ringing"]
+    cn = max(r["neg_P0_rel"] for r in ring if r["scheme"] == "crank-nicolson")
+    be = max(r["neg_P0_rel"] for r in ring if r["scheme"] == "implicit")
+    assert cn > 1e-2 and be < 1e-10
+    # the predictor coupling beats the lagged one at the finest step count
+    coup = res["coupling"]
+    n = max(r["n_steps"] for r in coup)
+    lag = next(r["L1"] for r in coup if r["coupling"] == "lagged" and r["n_steps"] == n)
+    pred = next(r["L1"] for r in coup if r["coupling"] == "predictor" and r["n_steps"] == n)
+    assert pred < lag
