@@ -6,15 +6,18 @@ import warnings
 
 import numpy as np
 import pytest
+from scipy import fft
 
 import persson_fp as pf
 from persson_fp.solvers.fv import (
     SCHEMES,
     SPACES,
     FiniteVolumeSolver,
+    _amplification,
     apply_mass,
     apply_operator,
     banded_operator,
+    dst_eigenvalues,
     rhs,
 )
 
@@ -178,9 +181,26 @@ def test_explicit_within_limit_runs(problems):
     assert c["L1"] < 5e-3
 
 
-def test_explicit_unstable_blows_up(problems):
+@pytest.mark.parametrize("linalg", ["dst", "banded"])
+@pytest.mark.parametrize("space", ["fv2", "compact4"])
+def test_explicit_unstable_blows_up(problems, linalg, space):
     with pytest.raises(pf.InstabilityError, match="raise n_steps"):
-        pf.solve(problems[None], "fv", scheme="explicit", space="fv2", n_p=200, n_steps=200, allow_unstable=True)
+        pf.solve(
+            problems[None],
+            "fv",
+            scheme="explicit",
+            space=space,
+            n_p=200,
+            n_steps=200,
+            allow_unstable=True,
+            linalg=linalg,
+        )
+
+
+@pytest.mark.parametrize("linalg", ["dst", "banded"])
+def test_explicit_unstable_blows_up_with_fudge(problems, linalg):
+    with pytest.raises(pf.InstabilityError, match="raise n_steps"):
+        pf.solve(problems["YP08"], "fv", scheme="explicit", n_p=200, n_steps=200, allow_unstable=True, linalg=linalg)
 
 
 def test_crank_nicolson_rings_on_delta_tr_bdf2_does_not(problems):
@@ -207,6 +227,7 @@ def test_crank_nicolson_rings_on_delta_tr_bdf2_does_not(problems):
         {"n_steps": 0},
         {"k_domain": -1.0},
         {"space": "fv6"},
+        {"linalg": "lu"},
     ],
 )
 def test_bad_options_raise(problems, bad):
@@ -227,6 +248,90 @@ def test_steppings(problems, stepping):
 
 
 def test_uniform_tau_steps_reuse_factorisation(problems):
-    sol = pf.solve(problems[None], "fv", scheme="crank-nicolson", stepping="tau", n_steps=50)
+    sol = pf.solve(problems[None], "fv", scheme="crank-nicolson", stepping="tau", n_steps=50, linalg="banded")
     assert sol.info["factorizations"] <= 2
     assert sol.info["tridiagonal_solves"] == 50
+
+
+# -- the spectral fast path (linalg="dst") ----------------------------------------------------------
+@pytest.mark.parametrize("space", ["fv2", "compact4"])
+@pytest.mark.parametrize("n", [4, 7, 64])
+def test_dst_diagonalises_L_and_M_exactly(space, n):
+    dp = 0.37
+    ab = banded_operator(n, dp)
+    L = np.diag(ab[1]) + np.diag(ab[0, 1:], 1) + np.diag(ab[2, :-1], -1)
+    M = apply_mass(np.eye(n), space)
+    S = fft.dst(np.eye(n), type=2, norm="ortho", axis=0)  # S @ x == dst(x)
+    np.testing.assert_allclose(S @ S.T, np.eye(n), atol=1e-14)
+    mu, m = dst_eigenvalues(n, dp, space)
+    j = np.arange(1, n + 1)
+    np.testing.assert_allclose(mu, -(2.0 / dp**2) * np.sin(np.pi * j / (2 * n)) ** 2, rtol=1e-14)
+    np.testing.assert_allclose(S @ L @ S.T, np.diag(mu), atol=1e-14 * np.max(np.abs(mu)))
+    np.testing.assert_allclose(S @ M @ S.T, np.diag(m), atol=1e-14)
+
+
+@pytest.mark.parametrize("space", ["fv2", "compact4"])
+def test_explicit_limit_is_where_the_top_mode_amplifies(space):
+    """The a-priori limit r = 1/2 (fv2), 1/3 (compact4) is |R| = 1 of the explicit step at j = n_p."""
+    n, dp = 50, 0.1
+    mu, m = dst_eigenvalues(n, dp, space)
+    limit = 0.5 if space == "fv2" else 1.0 / 3.0
+    for r, unstable in ((0.99 * limit, False), (1.01 * limit, True)):
+        R, _ = _amplification("theta", 0.0, 2.0 * r * dp**2 * mu / m)
+        assert (np.max(np.abs(R)) > 1.0) == unstable
+
+
+def both(problem, **options):
+    return pf.solve(problem, "fv", linalg="banded", **options), pf.solve(problem, "fv", linalg="dst", **options)
+
+
+def assert_same(a, b, tol=1e-12):
+    scale = np.max(np.abs(a.P0_all))
+    np.testing.assert_allclose(b.P0_all, a.P0_all, rtol=0, atol=tol * scale)
+    np.testing.assert_allclose(b.contact_area_all, a.contact_area_all, rtol=0, atol=tol)
+    np.testing.assert_allclose(b.contact_area_flux_all, a.contact_area_flux_all, rtol=0, atol=tol)
+    assert abs(b.info["far_wall_mass"] - a.info["far_wall_mass"]) <= tol
+    np.testing.assert_allclose(b.info["tau_numerical"], a.info["tau_numerical"], rtol=1e-13)
+    assert b.info["r_max"] == pytest.approx(a.info["r_max"], rel=1e-13)
+    assert a.info["linalg"] == "banded" and b.info["linalg"] == "dst"
+    assert b.info["tridiagonal_solves"] == 0 and b.info["transforms"] >= 2
+
+
+@pytest.mark.filterwarnings("ignore:fv. P0 has negative values:RuntimeWarning")  # explicit compact4
+@pytest.mark.parametrize("fudge", [None, "YP08"])
+@pytest.mark.parametrize("space", ["fv2", "compact4"])
+@pytest.mark.parametrize("scheme", list(SCHEMES))
+def test_dst_equals_banded(problems, scheme, space, fudge):
+    n_steps = 300 if scheme == "explicit" else 30
+    a, b = both(problems[fudge], scheme=scheme, space=space, n_p=40, n_steps=n_steps, zeta_out=[6.0, 30.0, 128.0])
+    assert_same(a, b)
+    # the mass balance (with the far-wall loss, ~1e-11 for implicit on this small grid) is the same
+    np.testing.assert_allclose(b.compare().mass_balance, a.compare().mass_balance, rtol=0, atol=1e-13)
+
+
+@pytest.mark.parametrize(("fudge", "coupling"), [("YP08", "lagged"), ("WM17", "picard"), ("WM17", "predictor")])
+def test_dst_equals_banded_couplings(problems, fudge, coupling):
+    a, b = both(problems[fudge], coupling=coupling, n_p=60, n_steps=40, zeta_out=[10.0, 128.0])
+    assert_same(a, b)
+    assert a.info["picard_iterations"] == b.info["picard_iterations"]
+
+
+@pytest.mark.parametrize("initial", ["exact", "delta"])
+@pytest.mark.parametrize("fudge", [None, "YP08"])
+def test_dst_equals_banded_batched(problems, fudge, initial):
+    base = problems[fudge]
+    loads = np.sqrt(float(base.V())) * np.array([0.01, 0.1, 0.5, 1.0, 3.0])
+    a, b = both(base.with_loads(loads), n_p=120, n_steps=60, zeta_out=[10.0, 50.0, 128.0], initial=initial)
+    assert b.P0_all.shape == (3, 5, 120)
+    assert_same(a, b)
+
+
+@pytest.mark.parametrize("stepping", ["geometric", "zeta"])
+def test_dst_equals_banded_steppings(problems, stepping):
+    assert_same(*both(problems[None], stepping=stepping, scheme="rannacher", n_p=50, n_steps=40))
+
+
+def test_auto_is_dst(problems):
+    sol = pf.solve(problems["YP08"], "fv", n_p=50, n_steps=20)
+    assert sol.info["linalg"] == "dst"
+    assert sol.info["options"]["linalg"] == "auto"

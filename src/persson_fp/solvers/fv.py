@@ -39,7 +39,7 @@ with θ = 0 ("explicit", stable for :math:`r = \tfrac12\Delta\tau/\Delta p^2 \le
 :math:`\Delta\tau` (S = 1) one factorisation (LAPACK ``pttrf``; the matrix is symmetric positive
 definite) serves all of them and is re-used while :math:`\Delta\tau` repeats (uniform steps);
 otherwise the per-load systems are stacked into one block-tridiagonal solve (``ptsv``),
-O(n_p n_loads) per step.
+O(n_p n_loads) per step.  This is the ``linalg="banded"`` path; the default is the spectral one below.
 
 *Space, 4th order* (``space="compact4"``, the default).  The same fluxes with the compact mass
 matrix :math:`M = \mathrm{tridiag}(1, 10, 1)/12` (``M dP/dtau = L P``, odd ghosts again), which is
@@ -48,6 +48,41 @@ M = I (2nd order).  Every θ-step above reads :math:`(M - \theta\Delta\tau L)P^{
 (M + (1-\theta)\Delta\tau L)P^n`.  Here :math:`\sum_i (MP)_i\Delta p + J_0 + J_{max}` is the
 conserved quantity, and ``contact_area_flux`` adds the known edge term
 :math:`\tfrac16\Delta p\,(\bar P_0 - \bar P_0^{\,start})`, so the mass balance still closes to round-off.
+
+*The spectral fast path* (``linalg="dst"``, the default through "auto").  With odd ghost cells at
+*both* walls, L and M are diagonalised exactly by the orthonormal DST-II basis (cell-centred sines
+:math:`\phi_j(i) \propto \sin(\pi j (i+\tfrac12)/n_p)`, j = 1..n_p, odd about both wall faces, so
+the ghost rules hold for every j; the compact end rows (9, 1)/12 are exactly M's odd-ghost rows):
+
+.. math::  L\phi_j = \mu_j\phi_j,\quad \mu_j = -\frac{2}{\Delta p^2}\sin^2\frac{\pi j}{2n_p}, \qquad
+           M\phi_j = m_j\phi_j,\quad m_j = m_d + 2m_o\cos\frac{\pi j}{n_p}
+           \;\big(\text{compact4: } (10 + 2\cos(\pi j/n_p))/12\big)
+
+(:func:`dst_eigenvalues`; checked against the dense matrices to 1e-15 in the tests).  So every
+step above multiplies coefficient j by a rational amplification factor of
+:math:`x_j = \Delta\tau\,\lambda_j`, :math:`\lambda_j = \mu_j/m_j` (:func:`_amplification`):
+θ-step :math:`R = (1+(1-\theta)x)/(1-\theta x)`; Rannacher start :math:`(1-x/2)^{-2}`; TR-BDF2,
+whose two stages share :math:`1-h`, :math:`h = \gamma x/2`: :math:`R = (1+(A+B)h)/(1-h)^2` with
+the BDF2 weights A, B (A - B = 1).  Without a fudge factor a whole run is
+:math:`P_N = S^{-1}\,\mathrm{diag}(\prod_k R_k)\,S P_0` (one ``scipy.fft.dst`` and one ``idst`` for
+all stations and loads).  With one, :math:`\Delta\tau_k` depends on the numerical
+:math:`A^* = \sum_i\bar P_i\Delta p` and (predictor) on the wall flux, both linear functionals
+of the coefficients (:math:`\langle v, P\rangle = \langle Sv, SP\rangle`, S orthogonal), so the
+march stays in coefficient space: O(n_p n_loads) array operations a step, no solve and no
+transform; P is transformed back only at the output stations.  The wall fluxes are functionals too,
+accumulated with the scheme's stage weights (per-mode weight F(x)), so ``contact_area_flux`` and
+``far_wall_mass`` are the banded path's to round-off.  The stability checks run on coefficients:
+non-finite values, negative or growing A*, and growth of :math:`\|P\|_2 = \|c\|_2` (which
+:math:`|R_j| \le 1` makes non-increasing) instead of max |P|; an explicit step past its limit
+(:math:`|R_j| > 1` for the top modes) still raises :class:`InstabilityError`.  The fast path is
+exact for every option of this solver, so "auto" always picks it; ``linalg="banded"`` keeps the
+tridiagonal solves below as the readable reference (the two agree to ~1e-14 of max P0).  It would
+stop being exact with a wall that is not odd (a reflecting far wall, another basis) or a
+non-uniform grid in p.  Coefficients below 1e-200 of :math:`\|P_0\|_2` are set to zero (the top
+modes would otherwise decay into subnormal numbers, ~100x slower arithmetic).  Measured
+(``benchmarks/fv_timing.py``): 2-9x faster than the banded path for one load, where the set-up
+(start-up data, nodes, ~1 ms without and ~3 ms with a fudge factor) is now a large part of the
+time, and 2.6x for 1000 loads with YP08 (the tau(V) node table is then most of the time).
 
 *Stepping* (measured on the reference problem, ``benchmarks/fv_timing.py``): nodes uniform in the
 effective variance ("tau") beat geometric and uniform-in-zeta nodes by 3-4x in error at equal
@@ -79,14 +114,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import fft as _fft
 from scipy.linalg import lapack
-from scipy.optimize import brentq
+from scipy.special import erf
 
 from ..fudge import NoFudge
 from ..solution import InstabilityError
 from .base import Solver, SolverOutput, check_float, check_int
 
-__all__ = ["FiniteVolumeSolver", "SCHEMES", "rhs", "banded_operator", "apply_operator"]
+__all__ = ["FiniteVolumeSolver", "SCHEMES", "rhs", "banded_operator", "apply_operator", "dst_eigenvalues"]
 
 
 # -- the scheme table: a scheme is data -----------------------------------------------------------
@@ -118,6 +154,15 @@ _BDF2_W = (1.0 - _GAMMA) / (2.0 - _GAMMA)  # = GAMMA / 2
 
 STEPPINGS = ("geometric", "zeta", "tau")
 COUPLINGS = ("auto", "lagged", "predictor", "picard")
+LINALGS = ("auto", "dst", "banded")
+_FLUSH = 1e-200
+"""DST path: coefficients (relative to ||P0||_2) below this are set to 0.  The top modes decay by
+|R| << 1 a step into the subnormal range, where arithmetic is ~100x slower (measured: 10 ms instead
+of 1.3 ms a step for 1000 loads); 1e-200 of the data is far below round-off."""
+_TAU_TABLE = 2049
+"""Points of the tau(V) table that places the "tau" nodes under a fudge factor (linear interpolation).
+257 would be 10x cheaper for 1000 loads (the table is most of the 1000-load batch's set-up) but moves
+the small predictor |dA*| of the committed stability atlas by ~1e-3 of itself."""
 
 
 # -- the readable operator and the fast one ------------------------------------------------------
@@ -254,6 +299,96 @@ class _Tridiag:
         return X.reshape(self.m, n)
 
 
+# -- the spectral fast path: L and M are diagonal in the DST-II basis ------------------------------
+def dst_eigenvalues(n_p: int, dp: float, space: str = "fv2"):
+    r"""Eigenvalues of L (:func:`banded_operator`) and of M (:func:`apply_mass`) in the DST-II basis.
+
+    Both are diagonalised *exactly* by the orthonormal cell-centred sines
+    :math:`\phi_j(i) \propto \sin(\pi j (i+\tfrac12)/n_p)`, j = 1..n_p (odd about both walls, so the
+    odd ghost cells hold for every j):
+    :math:`\mu_j = -\frac{2}{\Delta p^2}\sin^2\frac{\pi j}{2 n_p}` and
+    :math:`m_j = m_d + 2 m_o \cos\frac{\pi j}{n_p}` (compact4: :math:`(10 + 2\cos(\pi j/n_p))/12`).
+
+    Returns
+    -------
+    mu : ndarray (n_p,), 1/pressure^2
+    m : ndarray (n_p,)
+    """
+    j = np.arange(1, n_p + 1)
+    s2 = np.sin(0.5 * np.pi * j / n_p) ** 2
+    md, mo = SPACES[space]
+    return -(2.0 / dp**2) * s2, md + 2.0 * mo * (1.0 - 2.0 * s2)
+
+
+class _Spectral:
+    """The DST-II pair of the fast path and the linear functionals it needs in coefficient space."""
+
+    def __init__(self, n_p: int, dp: float, space: str):
+        mu, m_eig = dst_eigenvalues(n_p, dp, space)
+        self.lam = mu / m_eig  # eigenvalues of M^-1 L
+        self.transforms = 0
+        unit = np.zeros((3, n_p))
+        unit[0] = 1.0  # sum_i P_i
+        unit[1, 0] = 1.0  # P_0 (wall p = 0)
+        unit[2, -1] = 1.0  # P_{n-1} (wall p = p_max)
+        E = self.forward(unit)  # <v, P> = <S v, S P> (S orthogonal)
+        # a 4th (zero) column: with 3, numpy's matmul of (1000, 250) @ (250, 3) is ~20x slower than with 4
+        self.functionals = np.ascontiguousarray(np.stack([E[0] * dp, E[1] / dp, E[2] / dp, 0.0 * E[0]], axis=1))
+        """(n_p, 4): coefficients -> (sum P dp, wall flux at 0, wall flux at p_max, 0)."""
+        self.transforms = 0  # count the run's transforms only
+
+    def forward(self, P):
+        self.transforms += 1
+        return _fft.dst(P, type=2, norm="ortho", axis=-1)
+
+    def inverse(self, C):
+        self.transforms += 1
+        return _fft.idst(C, type=2, norm="ortho", axis=-1)
+
+
+def _amplification(kind: str, theta: float, x, work=None):
+    r"""Per-mode amplification R and wall-flux weight F of one step, with x = dtau lambda_j.
+
+    One step maps the DST coefficient :math:`c_j` to :math:`R_j c_j`; the outflow through a wall
+    over the step is :math:`\Delta\tau\sum_j F_j c_j \phi_j(\text{wall})/\Delta p`, F being the
+    scheme's stage weights applied to the wall flux (exactly what the banded path accumulates).
+    ``kind``: "theta" (θ-step), "be-halves" (two backward-Euler half steps, the Rannacher start)
+    or "tr-bdf2".  ``work``: optional three arrays of x's shape (R, F, scratch) written in place
+    (no temporaries: for 1000 loads allocating them costs more than the arithmetic).
+    """
+    R, F, T = work if work is not None else (np.empty_like(x), np.empty_like(x), np.empty_like(x))
+    if kind == "tr-bdf2":
+        # both stages share 1 - h, h = gamma x / 2 = W x: the trapezoidal stage is Rs = (1 + h)/(1 - h),
+        # then R = (A Rs - B)/(1 - h) = (1 + (A + B) h)/(1 - h)^2 (A - B = 1) and the wall-flux weight
+        # F = (A gamma / 2)(Rs + 1) + W R = A gamma/(1 - h) + W R
+        np.multiply(x, -_BDF2_W, out=T)
+        T += 1.0
+        np.divide(1.0, T, out=T)  # 1/(1 - h)
+        np.multiply(x, (_BDF2_A + _BDF2_B) * _BDF2_W, out=R)
+        R += 1.0
+        R *= T
+        R *= T
+        np.multiply(R, _BDF2_W, out=F)
+        T *= _BDF2_A * _GAMMA
+        F += T
+    elif kind == "be-halves":
+        np.multiply(x, -0.5, out=T)
+        T += 1.0
+        np.divide(1.0, T, out=T)  # Rh
+        np.multiply(T, T, out=R)
+        np.add(T, R, out=F)
+        F *= 0.5
+    else:
+        np.multiply(x, -theta, out=T)
+        T += 1.0  # 1 - theta x
+        np.multiply(x, 1.0 - theta, out=R)
+        R += 1.0
+        R /= T
+        np.multiply(R, theta, out=F)
+        F += 1.0 - theta
+    return R, F
+
+
 class FiniteVolumeSolver(Solver):
     r"""Cell-centred finite volumes with θ-schemes / TR-BDF2 (see the module docstring).
 
@@ -291,7 +426,12 @@ class FiniteVolumeSolver(Solver):
     allow_unstable : bool, default False
         Let "explicit" run past r = 1/2 (then an :class:`InstabilityError` is expected).
     check_every : int, default 10
-        Steps between stability checks (NaN, mass growth, max |P0| growth).
+        Steps between stability checks (NaN, mass growth, max |P0| growth; the l2 norm of P0 on the
+        "dst" path).
+    linalg : str, default "auto"
+        "dst": the spectral fast path (the same discrete solution to round-off, see the module
+        docstring); "banded": the tridiagonal solves (readable reference); "auto": "dst" whenever
+        it is exact for the chosen options, which is every combination this solver offers.
     """
 
     name = "fv"
@@ -311,6 +451,7 @@ class FiniteVolumeSolver(Solver):
         "rannacher_steps": 2,
         "allow_unstable": False,
         "check_every": 10,
+        "linalg": "auto",
     }
 
     def validate(self) -> None:
@@ -323,6 +464,7 @@ class FiniteVolumeSolver(Solver):
             ("coupling", COUPLINGS),
             ("initial", ("exact", "delta")),
             ("space", tuple(SPACES)),
+            ("linalg", LINALGS),
         ):
             if o[key] not in allowed:
                 raise ValueError(f"{key} must be one of {list(allowed)}, got {o[key]!r}")
@@ -349,14 +491,22 @@ class FiniteVolumeSolver(Solver):
             z0 = float(o["zeta0"])
         else:
             # where tau = frac * tau(zeta_max) for the load with the largest tau (cf. Solver.start_zeta)
-            V_max = float(pr.V())
-            j = int(np.argmax(pr.tau_of_V(V_max)))
-            tau_max = float(pr.tau_of_V(V_max)[j])
-            tau_first = float(pr.tau_of_V(pr.V(self.zeta_out[0]))[j])
-            target = min(o["tau0_fraction"] * tau_max, 0.5 * tau_first)
-            V0 = brentq(lambda v: float(pr.tau_of_V(v)[j]) - target, 0.0, V_max, xtol=1e-300, rtol=1e-15)
+            V_max, V_first = np.asarray(pr.V(np.array([pr.zeta_max, self.zeta_out[0]])), dtype=float)
+            tt = pr.tau_of_V(np.array([V_max, V_first]))  # (2, n_loads)
+            j = int(np.argmax(tt[0]))
+            target = min(o["tau0_fraction"] * float(tt[0, j]), 0.5 * float(tt[1, j]))
+            if isinstance(pr.fudge, NoFudge):
+                V0 = target  # tau = V
+            else:  # tau(V) is increasing: invert a table, then Newton with dtau/dV = S(erf(p_bar/sqrt(2 tau)))
+                Vt = np.linspace(0.0, V_max, 257)
+                V0 = float(np.interp(target, pr.tau_of_V(Vt)[:, j], Vt))
+                for _ in range(1):  # the table is good to ~1e-6, one step to ~1e-12
+                    t0 = float(pr.tau_of_V(V0)[j])
+                    slope = float(pr.fudge.S(erf(pr.p_bar[j] / np.sqrt(2.0 * t0))))
+                    V0 = min(max(V0 - (t0 - target) / slope, 0.0), V_max)
             z0 = self._zeta_of_V(V0)
         ex = self.exact_at(z0)
+        self._tau0 = np.asarray(ex.tau, dtype=float).reshape(pr.n_loads)
         F = np.asarray(ex.cdf_contact(self.edges)).reshape(pr.n_loads, -1)
         P = np.ascontiguousarray(np.diff(F, axis=-1) / self.dp)
         A = np.asarray(ex.contact_area, dtype=float).reshape(pr.n_loads)
@@ -367,7 +517,19 @@ class FiniteVolumeSolver(Solver):
         if V <= 0.0:
             return 1.0
         pr = self.problem
-        return float(brentq(lambda z: float(pr.V(z)) - V, 1.0, pr.zeta_max, xtol=1e-14, rtol=1e-15))
+        # three vectorised passes on 65-point grids in ln(zeta) (three calls of V instead of a scalar root
+        # find's ~10), then linear interpolation in the last cell: zeta to ~1e-10 relative, and the caller
+        # takes V(zeta) anew, so the start stays exact; V(zeta) is increasing
+        lo, hi = 0.0, np.log(pr.zeta_max)
+        for it in range(3):
+            z = np.exp(np.linspace(lo, hi, 65))
+            Vz = np.asarray(pr.V(z), dtype=float)
+            if it == 0 and V >= Vz[-1]:
+                return float(pr.zeta_max)
+            i = int(np.clip(np.searchsorted(Vz, V), 1, z.size - 1))
+            lo, hi = np.log(z[i - 1]), np.log(z[i])
+        w = (V - Vz[i - 1]) / (Vz[i] - Vz[i - 1]) if Vz[i] > Vz[i - 1] else 0.5
+        return float(min(max(z[i - 1] + w * (z[i] - z[i - 1]), 1.0), pr.zeta_max))
 
     def _nodes(self, V0):
         """V at the step nodes, shape (n_nodes, n_loads); every station is a node."""
@@ -410,11 +572,11 @@ class FiniteVolumeSolver(Solver):
             return np.full((t.size, pr.n_loads), Vb)
         if isinstance(pr.fudge, NoFudge):
             return (Va + t * (Vb - Va))[:, None] * np.ones(pr.n_loads)
-        Vt = np.linspace(Va, Vb, 2049)
-        tt = pr.tau_of_V(Vt)  # (2049, n_loads), increasing in V
+        Vt = np.linspace(Va, Vb, _TAU_TABLE)
+        tt = pr.tau_of_V(Vt)  # (_TAU_TABLE, n_loads), increasing in V
         target = tt[0] + t[:, None] * (tt[-1] - tt[0])
         out = np.empty((t.size, pr.n_loads))
-        for j in range(pr.n_loads):
+        for j in range(pr.n_loads):  # ~30 us a load: 1000 loads cost less than tau_of_V above
             out[:, j] = np.interp(target[:, j], tt[:, j], Vt)
         return out
 
@@ -431,9 +593,9 @@ class FiniteVolumeSolver(Solver):
         self.dp = dp = p_max / N
         self.edges = np.linspace(0.0, p_max, N + 1)
         p = 0.5 * (self.edges[1:] + self.edges[:-1])
-        k = 0.5 / dp**2
         m = pr.n_loads
 
+        linalg = "banded" if o["linalg"] == "banded" else "dst"  # dst is exact for every option here
         self.zeta0, V0, P, A0 = self._start()
         V_nodes, station_idx = self._nodes(V0)
         n_steps = V_nodes.shape[0] - 1
@@ -454,6 +616,55 @@ class FiniteVolumeSolver(Solver):
                     "scheme='tr-bdf2' / 'implicit' (or pass allow_unstable=True)"
                 )
 
+        if linalg == "dst":
+            res = self._march_dst(P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge)
+        else:
+            res = self._march_banded(P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge)
+        P_out, A_out, Af_out = res["P_out"], res["A_out"], res["Af_out"]
+        JN, r_max, dtau_total = res["JN"], res["r_max"], res["dtau_total"]
+
+        ex_end = self.exact_at(self.zeta_out[-1])
+        A_ex = np.asarray(ex_end.contact_area, float).reshape(m)
+        tail = A_ex - np.asarray(ex_end.cdf_contact(np.array([p_max])), float).reshape(m)
+        info = {
+            "grid": {"n_p": N, "p_max": p_max, "dp": dp},
+            "edges": self.edges,
+            "steps": n_steps,
+            "zeta0": self.zeta0,
+            "scheme": o["scheme"],
+            "stepping": o["stepping"],
+            "coupling": "exact (S = 1)" if no_fudge else coupling,
+            "order_tau": scheme.order,
+            **res["counters"],
+            "r_max": r_max,
+            "far_wall_mass": float(np.max(JN)),
+            "tail_mass_exact": float(np.max(np.abs(tail))),
+            "tau_numerical": dtau_total + (0.0 if o["initial"] == "delta" else self._tau0),
+            "k_domain": o["k_domain"],
+            "space": space,
+            "order_p": 4 if compact else 2,
+        }
+        return SolverOutput(
+            p=p,
+            P0=P_out,
+            weights=np.full(N, dp),
+            kind="cell",
+            info=info,
+            contact_area=A_out,
+            contact_area_flux=Af_out,
+        )
+
+    # -- the reference march: tridiagonal solves in p -------------------------------------------
+    def _march_banded(self, P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge) -> dict:
+        """The time loop with LAPACK tridiagonal solves (the readable reference of :meth:`_march_dst`)."""
+        o, pr = self.opts, self.problem
+        no_fudge = isinstance(pr.fudge, NoFudge)
+        S = pr.fudge.S
+        m, N = P.shape
+        dp = self.dp
+        k = 0.5 / dp**2
+        compact = space != "fv2"
+        n_steps = V_nodes.shape[0] - 1
         solver = _Tridiag(N, m, k, space)
         m_d, m_o = SPACES[space]
         MP = np.empty_like(P)
@@ -559,36 +770,230 @@ class FiniteVolumeSolver(Solver):
                 A_out[st] = mass
                 Af_out[st] = A0 - J0 + w_edge * dp * (P[:, 0] - P_edge0)
                 st += 1
-
-        ex_end = self.exact_at(self.zeta_out[-1])
-        A_ex = np.asarray(ex_end.contact_area, float).reshape(m)
-        tail = A_ex - np.asarray(ex_end.cdf_contact(np.array([p_max])), float).reshape(m)
-        info = {
-            "grid": {"n_p": N, "p_max": p_max, "dp": dp},
-            "edges": self.edges,
-            "steps": n_steps,
-            "zeta0": self.zeta0,
-            "scheme": o["scheme"],
-            "stepping": o["stepping"],
-            "coupling": "exact (S = 1)" if no_fudge else coupling,
-            "order_tau": scheme.order,
-            "tridiagonal_solves": solver.solves,
-            "factorizations": solver.factorizations,
-            "picard_iterations": picard_iters,
+        return {
+            "P_out": P_out,
+            "A_out": A_out,
+            "Af_out": Af_out,
+            "JN": JN,
             "r_max": r_max,
-            "far_wall_mass": float(np.max(JN)),
-            "tail_mass_exact": float(np.max(np.abs(tail))),
-            "tau_numerical": dtau_total + (0.0 if o["initial"] == "delta" else pr.tau(self.zeta0)),
-            "k_domain": o["k_domain"],
-            "space": space,
-            "order_p": 4 if compact else 2,
+            "dtau_total": dtau_total,
+            "counters": {
+                "linalg": "banded",
+                "tridiagonal_solves": solver.solves,
+                "factorizations": solver.factorizations,
+                "picard_iterations": picard_iters,
+            },
         }
-        return SolverOutput(
-            p=p,
-            P0=P_out,
-            weights=np.full(N, dp),
-            kind="cell",
-            info=info,
-            contact_area=A_out,
-            contact_area_flux=Af_out,
+
+    # -- the fast march: the same steps in DST-II coefficient space --------------------------------
+    def _step_kind(self, n: int) -> str:
+        o = self.opts
+        if o["scheme"] == "tr-bdf2":
+            return "tr-bdf2"
+        if o["scheme"] == "rannacher" and n < o["rannacher_steps"]:
+            return "be-halves"
+        return "theta"
+
+    def _check_dst(self, C, mass, mass_prev, norm, norm0, V_now, r_max):
+        """The stability checks of the banded path, on coefficients (the l2 norm of P0 is ||c||_2)."""
+        name = "fv/" + self.opts["scheme"]
+        remedy = "raise n_steps or use scheme='tr-bdf2'"
+        try:
+            self.check_state(C, mass, mass_prev, np.nan, name, remedy)
+        except InstabilityError:  # say where (the root find costs only when it fails)
+            self.check_state(C, mass, mass_prev, self._zeta_of_V(V_now), name, remedy)
+        if np.any(norm > 2.0 * norm0 + 1e-300):
+            raise InstabilityError(
+                f"{name}: the l2 norm of P0 grew by a factor {np.max(norm / norm0):.3g} by zeta = "
+                f"{self._zeta_of_V(V_now):.6g} (the heat equation cannot do that; r = {r_max:.3g}); {remedy}"
+            )
+
+    def _march_dst(self, P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge) -> dict:
+        r"""The time loop of :meth:`_march_banded` in DST-II coefficient space (module docstring).
+
+        Every step multiplies coefficient j by :math:`R(\Delta\tau\lambda_j)` (:func:`_amplification`);
+        A* and the wall fluxes are linear functionals of the coefficients, so the coupling of the
+        fudge factor needs no transform; P is transformed back only at the output stations.
+        """
+        o, pr = self.opts, self.problem
+        no_fudge = isinstance(pr.fudge, NoFudge)
+        m, N = P.shape
+        dp = self.dp
+        sp = _Spectral(N, dp, space)
+        fun = sp.functionals
+        n_steps = V_nodes.shape[0] - 1
+        theta = scheme.theta
+        C0 = sp.forward(P)
+        P_edge0 = P[:, 0].copy()
+        norm0 = np.sqrt(np.einsum("ij,ij->i", C0, C0))
+        P_out = np.empty((self.zeta_out.size, m, N))
+        A_out = np.empty((self.zeta_out.size, m))
+        Af_out = np.empty((self.zeta_out.size, m))
+        too_big = (
+            "explicit scheme: r = dtau/(2 dp^2) = {:.4g} exceeds the stability limit {:.4g} "
+            "(the fudge factor enlarged dtau); raise n_steps or use an implicit scheme"
         )
+        check_every = o["check_every"]
+
+        if no_fudge and np.all(V_nodes == V_nodes[:, :1]):
+            # one linear map per station: P_N = S^-1 diag(prod_k R_k) S P_0, all steps at once
+            dV = np.diff(V_nodes[:, 0])
+            dts = np.empty(n_steps)
+            prev = None
+            for n in range(n_steps):  # the banded path's rule for re-using a factorisation
+                d = dV[n]
+                if prev is not None and abs(d - prev) <= 1e-12 * d:
+                    d = prev
+                dts[n] = prev = d
+            X = dts[:, None] * sp.lam
+            R, F = _amplification(self._step_kind(n_steps), theta, X)
+            if o["scheme"] == "rannacher" and o["rannacher_steps"] > 0:
+                r0 = min(o["rannacher_steps"], n_steps)
+                R[:r0], F[:r0] = _amplification("be-halves", theta, X[:r0])
+            with np.errstate(over="ignore", invalid="ignore"):
+                G = np.cumprod(R, axis=0)  # G[k]: amplification through step k
+                np.copyto(G, 0.0, where=np.abs(G) < _FLUSH)  # no subnormals (see _FLUSH)
+                F *= dts[:, None]
+                F[1:] *= G[:-1]
+                H = np.cumsum(F, axis=0)  # H[k]: wall-flux weight through step k
+            r_max = 0.5 * float(np.max(dts)) / dp**2
+            if theta == 0.0 and r_max > r_limit and not o["allow_unstable"]:
+                raise ValueError(too_big.format(r_max, r_limit))
+            ks = np.array([k for k in range(n_steps) if (k + 1) % check_every == 0 or k + 1 == n_steps])
+            with np.errstate(over="ignore", invalid="ignore"):
+                Gk = G[ks]
+                mass_k = C0 @ (Gk * fun[:, 0]).T  # (m, n_checks)
+                norm_k = np.sqrt((C0 * C0) @ (Gk * Gk).T)
+                mass_prev = np.concatenate([(C0 @ fun[:, 0])[:, None], mass_k[:, :-1]], axis=1)
+                bad = (
+                    ~(np.isfinite(Gk).all(axis=1) & np.isfinite(mass_k).all(axis=0) & np.isfinite(norm_k).all(axis=0))
+                    | (mass_k < -1e-12).any(axis=0)
+                    | (mass_k > mass_prev * (1 + 1e-8) + 1e-12).any(axis=0)
+                    | (norm_k > 2.0 * norm0[:, None] + 1e-300).any(axis=0)
+                )
+            if bad.any():
+                i = int(np.argmax(bad))
+                k = ks[i]
+                with np.errstate(over="ignore", invalid="ignore"):
+                    Ck = C0 * G[k]
+                self._check_dst(Ck, mass_k[:, i], mass_prev[:, i], norm_k[:, i], norm0, V_nodes[k + 1, 0], r_max)
+                raise AssertionError("unreachable: a failed check raises")  # pragma: no cover
+            K = station_idx - 1
+            C_st = C0[None, :, :] * G[K][:, None, :]  # (n_st, m, N)
+            P_out[:] = sp.inverse(C_st)
+            A_out[:] = C_st @ fun[:, 0]
+            J0 = (C0 @ (H[K] * fun[:, 1]).T).T  # (n_st, m)
+            Af_out[:] = A0 - J0 + w_edge * dp * (P_out[:, :, 0] - P_edge0)
+            JN = C0 @ (H[-1] * fun[:, 2])
+            return {
+                "P_out": P_out,
+                "A_out": A_out,
+                "Af_out": Af_out,
+                "JN": JN,
+                "r_max": r_max,
+                "dtau_total": np.full(m, dts.sum()),
+                "counters": {
+                    "linalg": "dst",
+                    "transforms": sp.transforms,
+                    "tridiagonal_solves": 0,
+                    "factorizations": 0,
+                    "picard_iterations": 0,
+                },
+            }
+
+        # per-step march in coefficient space: dtau depends on the numerical A* (a functional)
+        S = pr.fudge.S
+        lam = sp.lam
+        fun_w = np.ascontiguousarray(fun[:, [1, 2, 2, 3]])  # 4 columns again (see _Spectral)
+
+        X = np.empty((m, N))
+        work = (np.empty((m, N)), np.empty((m, N)), np.empty((m, N)))
+        bufs = [np.empty((m, N)), np.empty((m, N))]  # the state and the next state, swapped every step
+
+        kinds = [self._step_kind(n) for n in range(n_steps)]
+        dV_all = np.diff(V_nodes, axis=0)
+        stations = [int(i) for i in station_idx]
+
+        def step(C, dtau, n):
+            np.multiply(dtau[:, None], lam, out=X)
+            R, F, T = work
+            _amplification(kinds[n], theta, X, work)
+            np.multiply(C, F, out=T)
+            fl = T @ fun_w
+            Cn = bufs[1] if C is bufs[0] else bufs[0]
+            np.multiply(C, R, out=Cn)
+            return Cn, dtau * fl[:, 0], dtau * fl[:, 1]
+
+        C = bufs[0]
+        C[:] = C0
+        flush = _FLUSH * float(np.max(norm0, initial=0.0))
+        mass, b0, bN, _ = (C @ fun).T
+        mass_prev = mass.copy()
+        J0 = np.zeros(m)
+        JN = np.zeros(m)
+        picard_iters = 0
+        dtau_max = r_max = 0.0
+        dtau_total = np.zeros(m)
+        dtau_prev = None
+        st = 0
+        for n in range(n_steps):
+            dV = dV_all[n]
+            if no_fudge:
+                dtau = dV.copy()
+                if dtau_prev is not None and np.all(np.abs(dtau - dtau_prev) <= 1e-12 * dtau):
+                    dtau = dtau_prev
+            else:
+                Sn = S(mass)
+                if coupling == "lagged":
+                    dtau = Sn * dV
+                else:
+                    A_pred = np.minimum(np.maximum(mass - dV * Sn * (b0 + bN), 0.0), 1.0)
+                    dtau = 0.5 * dV * (Sn + S(A_pred))
+            Cn, dJ0, dJN = step(C, dtau, n)
+            if coupling == "picard" and not no_fudge:
+                for _ in range(o["picard_maxiter"]):
+                    picard_iters += 1
+                    dtau_new = 0.5 * dV * (Sn + S(mass - dJ0 - dJN))
+                    if np.max(np.abs(dtau_new - dtau)) <= o["picard_tol"] * np.max(dtau):
+                        dtau = dtau_new
+                        break
+                    dtau = dtau_new
+                    Cn, dJ0, dJN = step(C, dtau, n)
+            dtau_max = max(dtau_max, float(dtau.max()))
+            r_max = 0.5 * dtau_max / dp**2
+            if theta == 0.0 and r_max > r_limit and not o["allow_unstable"]:
+                raise ValueError(too_big.format(r_max, r_limit))
+            dtau_prev = dtau
+            C = Cn
+            if n % 8 == 7:
+                np.copyto(C, 0.0, where=np.abs(C) < flush)  # no subnormals (see _FLUSH)
+            J0 += dJ0
+            JN += dJN
+            dtau_total += dtau
+            mass, b0, bN, _ = (C @ fun).T
+            if (n + 1) % check_every == 0 or n + 1 == n_steps:
+                norm = np.sqrt(np.einsum("ij,ij->i", C, C))
+                self._check_dst(C, mass, mass_prev, norm, norm0, V_nodes[n + 1, 0], r_max)
+                mass_prev = mass.copy()
+            if st < len(stations) and n + 1 == stations[st]:
+                Pst = sp.inverse(C)
+                while st < len(stations) and n + 1 == stations[st]:
+                    P_out[st] = Pst
+                    A_out[st] = mass
+                    Af_out[st] = A0 - J0 + w_edge * dp * (Pst[:, 0] - P_edge0)
+                    st += 1
+        return {
+            "P_out": P_out,
+            "A_out": A_out,
+            "Af_out": Af_out,
+            "JN": JN,
+            "r_max": r_max,
+            "dtau_total": dtau_total,
+            "counters": {
+                "linalg": "dst",
+                "transforms": sp.transforms,
+                "tridiagonal_solves": 0,
+                "factorizations": 0,
+                "picard_iterations": picard_iters,
+            },
+        }
