@@ -19,9 +19,11 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.special import erf
 
 from .._validate import as_float_array
 from ..exact import exact
+from ..fudge import NoFudge
 from ..problem import ContactProblem
 from ..solution import InstabilityError, Solution
 
@@ -131,37 +133,84 @@ class Solver:
         return np.minimum(z, zmax)
 
     def zeta_from_V(self, V_target) -> np.ndarray:
-        """Magnification at which V reaches ``V_target`` (monotone root find on the spectrum)."""
-        from scipy.optimize import brentq
+        """Magnification at which V reaches ``V_target`` (vectorised; 1 where V <= 0, zeta_max beyond V(zeta_max)).
 
-        V_target = np.atleast_1d(np.asarray(V_target, float))
-        out = np.empty_like(V_target)
-        zmax = self.problem.zeta_max
-        for i, vt in enumerate(V_target):
-            out[i] = brentq(lambda z, vt=vt: float(self.problem.V(z)) - vt, 1.0, zmax, xtol=1e-14, rtol=1e-15)
-        return out
+        Three bracketing passes on 65-point grids in ln zeta (three vectorised calls of V), linear
+        interpolation in the last cell, then two Newton steps with the exact dV/dzeta: zeta to round-off.
+        V(zeta) is increasing and smooth apart from the kink at the roll-off, which the bracket isolates.
+        """
+        pr = self.problem
+        V = np.atleast_1d(np.asarray(V_target, dtype=float))
+        zmax = pr.zeta_max
+        lo = np.zeros(V.shape)
+        hi = np.full(V.shape, np.log(zmax))
+        t = np.linspace(0.0, 1.0, 65)
+        for _ in range(3):
+            z = np.exp(lo[:, None] + t[None, :] * (hi - lo)[:, None])
+            Vz = np.asarray(pr.V(z), dtype=float)
+            i = np.clip(np.sum(Vz < V[:, None], axis=1), 1, t.size - 1)
+            r = np.arange(V.size)
+            lo, hi = np.log(z[r, i - 1]), np.log(z[r, i])
+        Va, Vb = Vz[r, i - 1], Vz[r, i]
+        za, zb = np.exp(lo), np.exp(hi)
+        w = np.divide(V - Va, Vb - Va, out=np.full(V.shape, 0.5), where=Vb > Va)
+        out = np.clip(za + w * (zb - za), za, zb)
+        for _ in range(2):
+            f = np.asarray(pr.V(out), dtype=float) - V
+            d = np.asarray(pr.dV_dzeta(out), dtype=float)
+            step = np.divide(f, d, out=np.zeros(V.shape), where=d > 0)
+            out = np.clip(out - step, za, zb)
+        out = np.where(V <= 0.0, 1.0, out)
+        return np.where(V >= float(pr.V(zmax)), zmax, out)
 
     def start_zeta(self, zeta0=None, tau0_fraction=None) -> float:
-        """Start-up magnification zeta0: given, or where tau = ``tau0_fraction`` * tau(zeta_max) (largest load)."""
-        if zeta0 is not None:
-            z0 = check_float(zeta0, "zeta0", 1.0, float(self.zeta_out[0]))
-            return z0
-        frac = check_float(tau0_fraction, "tau0_fraction", 0.0, 1.0)
-        # tau is monotone in V; find V0 with tau(V0) = frac * tau(V_max) for the load with the largest tau
-        V_max = float(self.problem.V())
-        tau_max = self.problem.tau_of_V(V_max)
-        j = int(np.argmax(tau_max))
-        target = frac * tau_max[j]
-        from scipy.optimize import brentq
+        """Start-up magnification zeta0 of an ``initial="exact"`` run.
 
-        V0 = brentq(lambda v: float(self.problem.tau_of_V(v)[j]) - target, 0.0, V_max, xtol=1e-300, rtol=1e-15)
-        z0 = float(self.zeta_from_V(V0)[0])
-        if z0 >= self.zeta_out[0]:
-            raise ValueError(
-                f"the start-up zeta0 = {z0:.6g} (tau0_fraction = {frac}) is not below the first output station "
-                f"{self.zeta_out[0]:.6g}; lower tau0_fraction"
-            )
-        return z0
+        ``zeta0`` if given (in [1, first station]); else where tau is ``tau0_fraction`` x tau(zeta_max)
+        for the load with the largest tau -- but at most half of that load's tau at the first output
+        station, so that the start always lies before it.  tau(V) is inverted by a table and one
+        Newton step with dtau/dV = S(A*) (to ~1e-12).
+        """
+        pr = self.problem
+        if zeta0 is not None:
+            return check_float(zeta0, "zeta0", 1.0, float(self.zeta_out[0]))
+        frac = check_float(tau0_fraction, "tau0_fraction", 0.0, 1.0)
+        V_max, V_first = np.asarray(pr.V(np.array([pr.zeta_max, self.zeta_out[0]])), dtype=float)
+        tt = pr.tau_of_V(np.array([V_max, V_first]))  # (2, n_loads)
+        j = int(np.argmax(tt[0]))
+        target = min(frac * float(tt[0, j]), 0.5 * float(tt[1, j]))
+        if isinstance(pr.fudge, NoFudge):
+            V0 = target  # tau = V
+        else:  # tau(V) is increasing
+            Vt = np.linspace(0.0, V_max, 257)
+            V0 = float(np.interp(target, pr.tau_of_V(Vt)[:, j], Vt))
+            t0 = float(pr.tau_of_V(V0)[j])
+            slope = float(pr.fudge.S(erf(pr.p_bar[j] / np.sqrt(2.0 * t0))))
+            V0 = min(max(V0 - (t0 - target) / slope, 0.0), V_max)
+        return float(self.zeta_from_V(V0)[0])
+
+    def initial_cell_averages(self, edges):
+        """Start of a cell-average method on the grid ``edges``: ``(zeta0, V0, P, A)``.
+
+        ``initial="exact"`` (``self.opts``): the exact cell averages at :meth:`start_zeta`
+        (P shape ``(n_loads, n_p)``, A* per load).  ``initial="delta"``: one cell of mass 1 at
+        p_bar at zeta = 1 (the discrete delta of the stability study).
+        """
+        o, pr = self.opts, self.problem
+        edges = np.asarray(edges, dtype=float)
+        dp = np.diff(edges)
+        n_p = dp.size
+        if o["initial"] == "delta":
+            P = np.zeros((pr.n_loads, n_p))
+            idx = np.minimum(np.searchsorted(edges, pr.p_bar, side="right") - 1, n_p - 1)
+            P[np.arange(pr.n_loads), idx] = 1.0 / dp[idx]
+            return 1.0, 0.0, P, np.ones(pr.n_loads)
+        z0 = self.start_zeta(o["zeta0"], o["tau0_fraction"])
+        ex = self.exact_at(z0)
+        F = np.asarray(ex.cdf_contact(edges)).reshape(pr.n_loads, -1)
+        P = np.ascontiguousarray(np.diff(F, axis=-1) / dp)
+        A = np.asarray(ex.contact_area, dtype=float).reshape(pr.n_loads)
+        return z0, float(pr.V(z0)), P, A
 
     def exact_at(self, zeta):
         """The exact solution of the problem at ``zeta`` (for start-up data and references)."""

@@ -54,8 +54,8 @@ import numpy as np
 
 from ..fudge import NoFudge
 from ..solution import InstabilityError
+from ._stepping import r_per_step, step_nodes
 from .base import Solver, SolverOutput, check_float, check_int
-from .pypde import r_per_step, start_state, step_nodes
 
 __all__ = ["FiPySolver", "SCHEMES", "LINEAR_SOLVERS"]
 
@@ -143,7 +143,7 @@ class FiPySolver(Solver):
         p_max = pr.p_max(o["k_domain"])
         edges = np.linspace(0.0, p_max, N + 1)
         dp = p_max / N
-        z0, V0, P_init, A_init = start_state(self, edges)
+        z0, V0, P_init, A_init = self.initial_cell_averages(edges)
         V_st = np.concatenate(([V0], np.atleast_1d(pr.V(self.zeta_out)).astype(float)))
         explicit = o["scheme"] == "explicit"
         n_steps = o["n_steps"]

@@ -116,7 +116,6 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import fft as _fft
 from scipy.linalg import lapack
-from scipy.special import erf
 
 from ..fudge import NoFudge
 from ..solution import InstabilityError
@@ -481,55 +480,13 @@ class FiniteVolumeSolver(Solver):
     # -- set-up --------------------------------------------------------------------------------
     def _start(self):
         """(zeta0, V0, P_init (n_loads, n_p), A_init (n_loads,)) on the grid ``self.edges``."""
-        o, pr = self.opts, self.problem
-        if o["initial"] == "delta":
-            P = np.zeros((pr.n_loads, self.n_p))
-            idx = np.minimum((pr.p_bar / self.dp).astype(int), self.n_p - 1)
-            P[np.arange(pr.n_loads), idx] = 1.0 / self.dp
-            return 1.0, 0.0, P, np.ones(pr.n_loads)
-        if o["zeta0"] is not None:
-            z0 = float(o["zeta0"])
-        else:
-            # where tau = frac * tau(zeta_max) for the load with the largest tau (cf. Solver.start_zeta)
-            V_max, V_first = np.asarray(pr.V(np.array([pr.zeta_max, self.zeta_out[0]])), dtype=float)
-            tt = pr.tau_of_V(np.array([V_max, V_first]))  # (2, n_loads)
-            j = int(np.argmax(tt[0]))
-            target = min(o["tau0_fraction"] * float(tt[0, j]), 0.5 * float(tt[1, j]))
-            if isinstance(pr.fudge, NoFudge):
-                V0 = target  # tau = V
-            else:  # tau(V) is increasing: invert a table, then Newton with dtau/dV = S(erf(p_bar/sqrt(2 tau)))
-                Vt = np.linspace(0.0, V_max, 257)
-                V0 = float(np.interp(target, pr.tau_of_V(Vt)[:, j], Vt))
-                for _ in range(1):  # the table is good to ~1e-6, one step to ~1e-12
-                    t0 = float(pr.tau_of_V(V0)[j])
-                    slope = float(pr.fudge.S(erf(pr.p_bar[j] / np.sqrt(2.0 * t0))))
-                    V0 = min(max(V0 - (t0 - target) / slope, 0.0), V_max)
-            z0 = self._zeta_of_V(V0)
-        ex = self.exact_at(z0)
-        self._tau0 = np.asarray(ex.tau, dtype=float).reshape(pr.n_loads)
-        F = np.asarray(ex.cdf_contact(self.edges)).reshape(pr.n_loads, -1)
-        P = np.ascontiguousarray(np.diff(F, axis=-1) / self.dp)
-        A = np.asarray(ex.contact_area, dtype=float).reshape(pr.n_loads)
-        return z0, float(pr.V(z0)), P, A
+        z0, V0, P, A = self.initial_cell_averages(self.edges)
+        self._tau0 = np.asarray(self.problem.tau_of_V(V0), dtype=float).reshape(self.problem.n_loads)
+        return z0, V0, P, A
 
     def _zeta_of_V(self, V) -> float:
-        """Magnification where V(zeta) = V (monotone root find; 1 for V <= 0)."""
-        if V <= 0.0:
-            return 1.0
-        pr = self.problem
-        # three vectorised passes on 65-point grids in ln(zeta) (three calls of V instead of a scalar root
-        # find's ~10), then linear interpolation in the last cell: zeta to ~1e-10 relative, and the caller
-        # takes V(zeta) anew, so the start stays exact; V(zeta) is increasing
-        lo, hi = 0.0, np.log(pr.zeta_max)
-        for it in range(3):
-            z = np.exp(np.linspace(lo, hi, 65))
-            Vz = np.asarray(pr.V(z), dtype=float)
-            if it == 0 and V >= Vz[-1]:
-                return float(pr.zeta_max)
-            i = int(np.clip(np.searchsorted(Vz, V), 1, z.size - 1))
-            lo, hi = np.log(z[i - 1]), np.log(z[i])
-        w = (V - Vz[i - 1]) / (Vz[i] - Vz[i - 1]) if Vz[i] > Vz[i - 1] else 0.5
-        return float(min(max(z[i - 1] + w * (z[i] - z[i - 1]), 1.0), pr.zeta_max))
+        """Magnification where V(zeta) = V (1 for V <= 0)."""
+        return float(self.zeta_from_V(V)[0])
 
     def _nodes(self, V0):
         """V at the step nodes, shape (n_nodes, n_loads); every station is a node."""
