@@ -234,8 +234,8 @@ Reading the guidance: on this problem the sine series is the answer whenever it 
 round-off without a fudge factor; with YP08 its $\tau(\zeta)$ map needs a few hundred modes and it costs milliseconds,
 still the fastest persson-fp method. Counted honestly (compile included), py-pde never wins. Among the grid solvers,
 `fv` (TR-BDF2 or Crank–Nicolson at coarse accuracy, the explicit $r=1/6$ scheme at high accuracy) beats `mol`
-at every target; the Chapman–Kolmogorov kernel (a few large, exact steps) sits between `sines` and `fv` without a fudge
-factor, but falls behind `fv` with YP08. (The assert cell at the end checks these statements against the table.)
+at every target; the Chapman–Kolmogorov kernel (a few large, exact steps) is on a par with `fv` without a fudge
+factor (within a factor of 3 either way), but falls behind `fv` with YP08. (The assert cell at the end checks these statements against the table.)
 
 ## 4. A live run on this machine
 
@@ -414,7 +414,7 @@ for (fz, tg), (a, b, _c) in guide.items():                    # the prose of sec
         assert fv_mol["fv"]["time"] < fv_mol["mol"]["time"], (fz, tg)
     if tg in THRESHOLDS:
         ck, fvr = fv_mol["chapman-kolmogorov"]["time"], fv_mol["fv"]["time"]
-        assert (ck < fvr) if fz == "none" else (ck > fvr), (fz, tg)
+        assert (fvr / 3 < ck < 3 * fvr) if fz == "none" else (ck > fvr), (fz, tg)
 assert 20 < min(vs_fv) and max(vs_fv) < 1000                        # "30-800x slower than fv"
 assert {r["label"] for r in rows if r["L1"] <= 1e-10} == {"sines"}   # "only the sine series reaches 1e-10"
 assert bench_machine.startswith("vm: x86_64")

@@ -296,7 +296,7 @@ coupling = {}
 for c in ["lagged", "predictor", "picard"]:
     out = []
     for n in steps_c:
-        sol = pf.solve(problem_yp, method="fv", coupling=c, n_steps=n, n_p=400)
+        sol = pf.solve(problem_yp, method="fv", coupling=c, n_steps=n, n_p=400, linalg="banded")
         out.append((sol.compare().final()["area_error"], sol.wall_time, sol.info["tridiagonal_solves"]))
     coupling[c] = np.array(out)
 fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11, 3.8), layout="constrained")
@@ -307,7 +307,7 @@ for k, (c, out) in enumerate(coupling.items()):
     ax1.loglog(out[:, 2], out[:, 0], "o-", color=f"C{k}", label=c)
 ax0.set_xlabel("n_steps")
 ax0.set_ylabel(r"$|\Delta A^*|$ at $\zeta_{max}$ (YP08)")
-ax1.set_xlabel("tridiagonal solves")
+ax1.set_xlabel("tridiagonal solves (banded path; the default DST path needs none)")
 ax1.set_ylabel(r"$|\Delta A^*|$")
 for ax in (ax0, ax1):
     ax.grid(lw=0.3, which="both")
@@ -447,7 +447,7 @@ ax2.grid(lw=0.3, which="both")
 plt.show()
 cn_c = ring_c["crank-nicolson"]
 cn_ring_max, cn_r_max = float(cn_c[:, 1].max()), float(cn_c[cn_c[:, 1].argmax(), 0])  # smallest r at the maximum
-cn_r_clean = float(cn_c[cn_c[:, 1] == 0, 0].max())            # largest r without a negative P0
+cn_r_clean = float(cn_c[cn_c[:, 1] <= 1e-12, 0].max())        # largest r without a negative P0 (beyond round-off)
 tr_c = ring_c["tr-bdf2"]
 tr_ring_max, tr_r_clean = float(tr_c[:, 1].max()), float(tr_c[tr_c[:, 1] <= 1e-12, 0].max())
 coup_match = max(abs(coupling[c][i, 0] / coup_committed[c][n] - 1)
@@ -529,7 +529,7 @@ for (space, ini, n_p), (ok_r, blown_r) in onset.items():
     assert ok_r < blown_r and blown_r > lim * 0.99 and (ini == "exact" or ok_r <= lim + 1e-3), (space, ini, n_p)
 assert all(e["outcome"] == "blown-up" for e in expl if f(e["r"]) > 1.4)      # r = 1.5 and 2 blow up everywhere
 assert cn_ring_max > 10 and tr_ring_max < 1 and tr_ring_max > 0.1
-assert ring_c["rannacher"][:, 1].max() == 0 and ring_c["implicit"][:, 1].max() == 0
+assert ring_c["rannacher"][:, 1].max() <= 1e-12 and ring_c["implicit"][:, 1].max() <= 1e-12  # round-off of the DST path
 assert coup_match < 1e-3                                                      # live section 5 = committed atlas
 print("all checks passed")
 """,
