@@ -226,7 +226,8 @@ class Solver:
         if mass_prev is not None and np.any(mass > mass_prev * (1 + 1e-8) + 1e-12):
             raise InstabilityError(
                 f"{name}: contact area grows ({np.max(mass - mass_prev):.3e}) at zeta = {zeta:.6g} -- "
-                f"the discrete evolution is unstable; {remedy}"
+                "the discrete evolution is unstable, or oscillates so that a negative wall cell returns mass "
+                f"(contact can only be lost, eq:Area); {remedy}"
             )
 
     def run(self) -> Solution:
