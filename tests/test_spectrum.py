@@ -168,3 +168,27 @@ def test_bad_zeta_and_tabulated_input():
         pf.TabulatedPSD([1, 2, 3], [1, 0, 1])
     with pytest.raises(ValueError, match="E_star"):
         psd.V(2.0, E_star=-1.0)
+
+
+@pytest.mark.parametrize("H", [0.0, 0.5, 1.0])
+@pytest.mark.parametrize("q_r", [1.0, 3.0])
+def test_zeta_of_V_inverts_V(H, q_r):
+    """The closed-form inverse against a bracketing root find (scipy brentq) of V(zeta) = V."""
+    from scipy.optimize import brentq
+
+    psd = pf.SelfAffinePSD(2e-4, H, 1.0, q_r, 300.0)
+    E = 3.0
+    V_max = float(psd.V(E_star=E))
+    targets = np.array([0.0, 1e-9 * V_max, 0.01 * V_max, float(psd.V(q_r, E)), 0.5 * V_max, V_max, 2 * V_max])
+    z = psd.zeta_of_V(targets, E)
+    assert z[0] == 1.0 and z[-1] == psd.zeta_max
+    for t, zz in zip(targets[1:-1], z[1:-1]):
+        ref = brentq(lambda x, t=t: float(psd.V(x, E)) - t, 1.0, psd.zeta_max, xtol=1e-15, rtol=1e-15)
+        assert zz == pytest.approx(ref, rel=1e-12)
+
+
+def test_zeta_of_V_tabulated():
+    q = np.geomspace(1, 100, 25)
+    tab = pf.TabulatedPSD(q, 1e-3 * q**-3.1 * (1 + 0.3 * np.sin(q)))
+    z = np.geomspace(1, 100, 200)
+    np.testing.assert_allclose(tab.zeta_of_V(tab.V(z)), z, rtol=1e-12)

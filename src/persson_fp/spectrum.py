@@ -45,6 +45,22 @@ def powint(a, b, e):
     return np.where(e == 0.0, log_ratio, val)
 
 
+def powint_inverse(a, I, e):
+    r"""The ``b`` with :math:`\int_a^b q^{e-1}\,dq = I` (inverse of :func:`powint` in its upper limit).
+
+    :math:`b = a\,(1 + e I / a^e)^{1/e}`, written with ``log1p``/``exp`` so that it is continuous
+    at ``e = 0`` (where :math:`b = a\,e^{I}`).
+    """
+    a = np.asarray(a, dtype=float)
+    I = np.asarray(I, dtype=float)
+    e = np.asarray(e, dtype=float)
+    x = e * I / np.power(a, e)
+    e_safe = np.where(e == 0.0, 1.0, e)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        log_ratio = np.where(e == 0.0, I, np.log1p(x) / e_safe)
+    return a * np.exp(log_ratio)
+
+
 class PSD:
     """Base class of isotropic spectra on ``[q_l, q_s]``.
 
@@ -104,6 +120,23 @@ class PSD:
         """
         E_star = as_positive_scalar(E_star, "E_star")
         return 0.25 * E_star**2 * self.grad2(zeta)
+
+    def zeta_of_V(self, V, E_star: float = 1.0) -> np.ndarray:
+        """Magnification at which the complete-contact variance reaches ``V`` (pressure^2).
+
+        The inverse of :meth:`V` in closed form (the moment of a piecewise power law is inverted
+        piece by piece, :func:`powint_inverse`): 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
+        """
+        E_star = as_positive_scalar(E_star, "E_star")
+        V = np.asarray(as_float_array(V, "V"), dtype=float)
+        M_max = float(self.moment(3))
+        M = np.clip(V / (0.5 * np.pi * E_star**2), 0.0, M_max)
+        z = np.clip(self.moment_inverse(3, M) / self.q_l, 1.0, self.zeta_max)
+        return np.where(M >= M_max, self.zeta_max, np.where(M <= 0.0, 1.0, z))
+
+    def moment_inverse(self, k: float, M) -> np.ndarray:  # pragma: no cover - abstract
+        r"""The upper limit q with :math:`\int_{q_l}^{q} q'^k C(q')\,dq' = M` (1/length)."""
+        raise NotImplementedError
 
     def dV_dzeta(self, zeta=None, E_star: float = 1.0) -> np.ndarray:
         r""":math:`dV/d\zeta = \frac{\pi}{2} E^{*2} q_l q^3 C(q)`, :math:`q = \zeta q_l` (``eq:dVdxi``)."""
@@ -203,6 +236,14 @@ class SelfAffinePSD(PSD):
         tail = self.C0 * powint(self.q_r, tail_hi, k - 1.0 - 2.0 * self.H)
         return plateau + tail
 
+    def moment_inverse(self, k: float, M) -> np.ndarray:
+        M = np.asarray(M, dtype=float)
+        c_plateau = self.C0 * self.q_r ** (-2.0 * (1.0 + self.H))
+        M_r = c_plateau * powint(self.q_l, self.q_r, k + 1.0)  # the plateau's share
+        q_plat = powint_inverse(self.q_l, np.minimum(M, M_r) / c_plateau, k + 1.0)
+        q_tail = powint_inverse(self.q_r, np.maximum(M - M_r, 0.0) / self.C0, k - 1.0 - 2.0 * self.H)
+        return np.where(M <= M_r, q_plat, q_tail)
+
 
 class TabulatedPSD(PSD):
     r"""A measured isotropic spectrum given at points ``(q_i, C_i)``.
@@ -292,16 +333,30 @@ class TabulatedPSD(PSD):
         Ci = self.values[i] * (q_lo / self.q[i]) ** s
         return Ci * q_lo ** (k + 1.0) * powint(1.0, q_hi / q_lo, k + 1.0 + s)
 
-    def moment(self, k: float, zeta=None) -> np.ndarray:
-        r"""Exact :math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq` of the log-log interpolant."""
-        z = np.asarray(self._zeta(zeta), dtype=float)
-        q_hi = z * self.q_l
-        # nodes of the band: q_l, the table points strictly inside, q_s
+    def _band(self, k):
+        """Nodes of the band, table interval of each piece, and the cumulative moment at the nodes."""
         inner = self.q[(self.q > self.q_l) & (self.q < self.q_s)]
         nodes = np.concatenate(([self.q_l], inner, [self.q_s]))
         seg = np.clip(np.searchsorted(self.q, nodes[:-1], side="right") - 1, 0, self.q.size - 2)
         full = self._segment_moment(k, seg, nodes[:-1], nodes[1:])
-        cum = np.concatenate(([0.0], np.cumsum(full)))
+        return nodes, seg, np.concatenate(([0.0], np.cumsum(full)))
+
+    def moment_inverse(self, k: float, M) -> np.ndarray:
+        M = np.asarray(M, dtype=float)
+        nodes, seg, cum = self._band(k)
+        j = np.clip(np.searchsorted(cum, M, side="right") - 1, 0, nodes.size - 2)
+        s = self._slopes()[seg[j]]
+        q0 = nodes[j]
+        C_lo = self.values[seg[j]] * (q0 / self.q[seg[j]]) ** s
+        # int_{q0}^{q} x^k C_lo (x/q0)^s dx = C_lo q0^(k+1) powint(1, q/q0, k+1+s)
+        r = powint_inverse(1.0, (M - cum[j]) / (C_lo * q0 ** (k + 1.0)), k + 1.0 + s)
+        return np.minimum(q0 * r, nodes[j + 1])
+
+    def moment(self, k: float, zeta=None) -> np.ndarray:
+        r"""Exact :math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq` of the log-log interpolant."""
+        z = np.asarray(self._zeta(zeta), dtype=float)
+        q_hi = z * self.q_l
+        nodes, seg, cum = self._band(k)  # q_l, the table points strictly inside, q_s
         j = np.clip(np.searchsorted(nodes, q_hi, side="right") - 1, 0, nodes.size - 2)
         partial = self._segment_moment(k, seg[j], nodes[j], np.maximum(q_hi, nodes[j]))
         return cum[j] + partial

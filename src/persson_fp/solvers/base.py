@@ -133,35 +133,12 @@ class Solver:
         return np.minimum(z, zmax)
 
     def zeta_from_V(self, V_target) -> np.ndarray:
-        """Magnification at which V reaches ``V_target`` (vectorised; 1 where V <= 0, zeta_max beyond V(zeta_max)).
+        """Magnification at which V reaches ``V_target`` (1 where V <= 0, zeta_max beyond V(zeta_max)).
 
-        Three bracketing passes on 65-point grids in ln zeta (three vectorised calls of V), linear
-        interpolation in the last cell, then two Newton steps with the exact dV/dzeta: zeta to round-off.
-        V(zeta) is increasing and smooth apart from the kink at the roll-off, which the bracket isolates.
+        The spectrum's closed-form inverse (:meth:`persson_fp.spectrum.PSD.zeta_of_V`), vectorised.
         """
-        pr = self.problem
         V = np.atleast_1d(np.asarray(V_target, dtype=float))
-        zmax = pr.zeta_max
-        lo = np.zeros(V.shape)
-        hi = np.full(V.shape, np.log(zmax))
-        t = np.linspace(0.0, 1.0, 65)
-        for _ in range(3):
-            z = np.exp(lo[:, None] + t[None, :] * (hi - lo)[:, None])
-            Vz = np.asarray(pr.V(z), dtype=float)
-            i = np.clip(np.sum(Vz < V[:, None], axis=1), 1, t.size - 1)
-            r = np.arange(V.size)
-            lo, hi = np.log(z[r, i - 1]), np.log(z[r, i])
-        Va, Vb = Vz[r, i - 1], Vz[r, i]
-        za, zb = np.exp(lo), np.exp(hi)
-        w = np.divide(V - Va, Vb - Va, out=np.full(V.shape, 0.5), where=Vb > Va)
-        out = np.clip(za + w * (zb - za), za, zb)
-        for _ in range(2):
-            f = np.asarray(pr.V(out), dtype=float) - V
-            d = np.asarray(pr.dV_dzeta(out), dtype=float)
-            step = np.divide(f, d, out=np.zeros(V.shape), where=d > 0)
-            out = np.clip(out - step, za, zb)
-        out = np.where(V <= 0.0, 1.0, out)
-        return np.where(V >= float(pr.V(zmax)), zmax, out)
+        return np.atleast_1d(self.problem.psd.zeta_of_V(V, self.problem.E_star))
 
     def start_zeta(self, zeta0=None, tau0_fraction=None) -> float:
         """Start-up magnification zeta0 of an ``initial="exact"`` run.
