@@ -155,3 +155,11 @@ def test_options_validated():
         pf.solve(pr, "mol", integrater="BDF")
     with pytest.warns(UserWarning, match="n_steps"):
         pf.solve(pr, "mol", n_steps=10, n_p=41)
+
+
+def test_error_keeps_falling_below_1e8():
+    """Issue 3: no plateau from the start-up or the far wall -- mol order 4 refined to L1 < 1e-8."""
+    pr = pf.ContactProblem.reference()
+    errs = [pf.solve(pr, "mol", order=4, n_p=n, rtol=r).compare().final()["L1"] for n, r in ((300, 1e-9), (600, 1e-11))]
+    assert errs[1] < errs[0] / 8  # still 4th-order-like between these two resolutions
+    assert errs[1] < 1e-8
