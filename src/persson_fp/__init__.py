@@ -8,7 +8,15 @@ physics around it, and numerical solvers behind :func:`solve`.
 
 from . import fudge
 from .effective import EffectiveVariance, effective_variance
-from .exact import ExactSolution, elastic_energy, exact, image_pdf, pressure_spectrum, variance_closed_form
+from .exact import (
+    ExactSolution,
+    area_from_tau,
+    elastic_energy,
+    exact,
+    image_pdf,
+    pressure_spectrum,
+    variance_closed_form,
+)
 from .problem import ContactProblem
 from .solution import Comparison, InstabilityError, Solution, SolverError
 from .solvers import METHODS, available_methods, solve
@@ -27,6 +35,7 @@ __all__ = [
     "ExactSolution",
     "exact",
     "image_pdf",
+    "area_from_tau",
     "variance_closed_form",
     "pressure_spectrum",
     "elastic_energy",

@@ -89,7 +89,15 @@ class EffectiveVariance:
         p_bar, V = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(V, dtype=float))
         if self.identity:
             return V.astype(float, copy=True)
-        return p_bar**2 * self.u_of_v(V / p_bar**2)
+        # beyond v = V_MAX the map is linear, tau = slope V + p^2 (u_end - slope V_MAX): written without
+        # forming V / p^2, which overflows for extreme loads (p_bar < 1e-154 sqrt(V))
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            v = V / p_bar**2
+        far = ~(v <= _V_MAX)
+        out = np.empty(V.shape)
+        out[~far] = p_bar[~far] ** 2 * self.u_of_v(v[~far])
+        out[far] = self.slope_end * V[far] + p_bar[far] ** 2 * (self.u_end - self.slope_end * _V_MAX)
+        return out
 
 
 _CACHE: dict = {}

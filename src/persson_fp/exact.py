@@ -26,7 +26,15 @@ from scipy.special import erf, erfc
 from ._validate import as_float_array, as_positive_scalar
 from .problem import ContactProblem
 
-__all__ = ["ExactSolution", "exact", "image_pdf", "variance_closed_form", "pressure_spectrum", "elastic_energy"]
+__all__ = [
+    "ExactSolution",
+    "exact",
+    "image_pdf",
+    "area_from_tau",
+    "variance_closed_form",
+    "pressure_spectrum",
+    "elastic_energy",
+]
 
 _SQRT2PI = np.sqrt(2.0 * np.pi)
 
@@ -45,6 +53,18 @@ def image_pdf(p, p_bar, tau) -> np.ndarray:
         gauss = np.exp(-((pp - p_bar) ** 2) / (2.0 * tau)) / (_SQRT2PI * np.sqrt(tau))
         out = gauss * -np.expm1(-2.0 * pp * p_bar / tau)
     return np.where(pos, out, 0.0)
+
+
+def area_from_tau(p_bar, tau) -> np.ndarray:
+    """A* = erf(p_bar / sqrt(2 tau)) (``eq:Area_Persson`` at the effective variance), 1 where tau = 0."""
+    p_bar, tau = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(tau, dtype=float))
+    x = np.divide(p_bar, np.sqrt(2.0 * tau), out=np.full(p_bar.shape, np.inf), where=tau > 0)
+    return erf(x)
+
+
+def _check_problem(problem):
+    if not isinstance(problem, ContactProblem):
+        raise ValueError(f"problem must be a ContactProblem, got {type(problem).__name__}")
 
 
 def variance_closed_form(p_bar, tau) -> np.ndarray:
@@ -79,6 +99,7 @@ class ExactSolution:
     """
 
     def __init__(self, problem: ContactProblem, zeta=None):
+        _check_problem(problem)
         self.problem = problem
         z = problem.zeta_max if zeta is None else zeta
         z = as_float_array(z, "zeta")
@@ -191,12 +212,13 @@ def pressure_spectrum(problem: ContactProblem, q, A_n: float = 1.0) -> np.ndarra
     with S = 1 in the original theory.  ``A_n`` is the nominal area (length^2).
     Returns shape ``q.shape + (n_loads,)`` (load axis dropped for a scalar load).
     """
+    _check_problem(problem)
     A_n = as_positive_scalar(A_n, "A_n")
     q = as_float_array(q, "q")
     psd = problem.psd
     z = psd.check_zeta(q / psd.q_l, "q / q_l")
     tau = problem.tau(z)
-    A = erf(problem.p_bar / np.sqrt(2.0 * tau))
+    A = area_from_tau(problem.p_bar, tau)
     S = problem.fudge.S(A)
     out = (problem.E_star / (4.0 * np.pi)) ** 2 * A_n * (q**2 * psd.C(q))[..., None] * A * S
     return out[..., 0] if problem.scalar_load else out
@@ -212,9 +234,19 @@ def elastic_energy(problem: ContactProblem, zeta=None, epsrel: float = 1e-10) ->
     it for a finite patch).  S = 1 in the original theory; the corrected models
     carry S(A*) as in Yang & Persson (2008).  A* comes from the model in use at
     each q.  Adaptive quadrature in ln q (``scipy.integrate.quad_vec``), split at
-    the roll-off, vectorised over loads, relative tolerance ``epsrel``.
+    the roll-off, vectorised over loads, relative tolerance ``epsrel`` in (0, 0.1].
+    ``zeta`` is one magnification (scalar), default ``zeta_max``.
     """
+    _check_problem(problem)
     psd = problem.psd
+    try:
+        epsrel = float(epsrel)
+    except (TypeError, ValueError):
+        raise ValueError(f"epsrel must be a number in (0, 0.1], got {epsrel!r}") from None
+    if not (np.isfinite(epsrel) and 0.0 < epsrel <= 0.1):
+        raise ValueError(f"epsrel must lie in (0, 0.1], got {epsrel!r}")
+    if zeta is not None and np.ndim(zeta) != 0:
+        raise ValueError(f"zeta must be a scalar magnification (call once per zeta), got shape {np.shape(zeta)}")
     zeta = psd.zeta_max if zeta is None else float(psd.check_zeta(zeta))
     lo, hi = np.log(psd.q_l), np.log(zeta * psd.q_l)
     if hi <= lo:
@@ -224,9 +256,7 @@ def elastic_energy(problem: ContactProblem, zeta=None, epsrel: float = 1e-10) ->
     def integrand(t):
         q = np.exp(t)
         z = min(max(q / psd.q_l, 1.0), psd.zeta_max)
-        tau = problem.tau(np.array(z))
-        with np.errstate(divide="ignore"):
-            A = erf(np.divide(problem.p_bar, np.sqrt(2.0 * tau), out=np.full(tau.shape, np.inf), where=tau > 0))
+        A = area_from_tau(problem.p_bar, problem.tau(np.array(z)))
         return q**3 * psd.C(q) * A * problem.fudge.S(A)
 
     pts = []

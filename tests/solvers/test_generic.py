@@ -84,3 +84,31 @@ def test_shared_knob_ignored_warns():
         warnings.simplefilter("always")
         pf.solve(pf.ContactProblem.reference(), method="sines", scheme="implicit")
     assert any("ignores the option 'scheme'" in str(x.message) for x in w)
+
+
+@pytest.mark.parametrize(
+    "method", [m for m in ("fv", "chapman-kolmogorov", "py-pde", "fipy") if m in pf.available_methods()]
+)
+def test_unresolved_first_station_is_refused_not_smeared(method):
+    """An early station that the grid cannot resolve raises (naming n_p) instead of spoiling later ones."""
+    pr = pf.ContactProblem.reference(p_bar_ratio=np.array([1e-4, 0.5, 3.0]))
+    with pytest.raises(ValueError, match=r"not resolved by the grid.*raise n_p"):
+        pf.solve(pr, method=method, zeta_out=[1.002, 128.0])
+
+
+def test_early_station_with_enough_cells_is_accurate_everywhere():
+    pr = pf.ContactProblem.reference(p_bar_ratio=np.array([1e-4, 0.5, 3.0]))
+    sol = pf.solve(pr, method="fv", zeta_out=[1.05, 128.0], n_p=2000)
+    err = sol.compare()
+    assert err.L1[-1].max() < 2e-5 and err.load_drift.max() < 1e-10
+
+
+@pytest.mark.parametrize("method", [m for m in ("fv", "py-pde", "fipy") if m in pf.available_methods()])
+def test_flags_and_domain_are_validated(method):
+    pr = pf.ContactProblem.reference()
+    with pytest.raises(ValueError, match="allow_unstable must be True or False"):
+        pf.solve(pr, method=method, allow_unstable="False")
+    with pytest.raises(ValueError, match="k_domain must lie in"):
+        pf.solve(pr, method=method, k_domain=1e6)
+    with pytest.raises(ValueError, match="n_p must be an integer"):
+        pf.solve(pr, method=method, n_p=True)

@@ -27,14 +27,16 @@ from ..fudge import NoFudge
 from ..problem import ContactProblem
 from ..solution import InstabilityError, Solution
 
-__all__ = ["Solver", "SolverOutput", "SHARED_KNOBS", "check_int", "check_float"]
+__all__ = ["Solver", "SolverOutput", "SHARED_KNOBS", "check_int", "check_float", "check_bool", "MIN_SIGMA_CELLS"]
 
 SHARED_KNOBS = ("n_p", "n_steps", "rtol", "atol", "scheme", "zeta_out")
 """Resolution knobs every method accepts (and warns about when it ignores one)."""
 
 
 def check_int(value, name: str, lo: int, hi: int | None = None) -> int:
-    """An integer in [lo, hi] or a ``ValueError`` naming ``name`` and the range."""
+    """An integer in [lo, hi] or a ``ValueError`` naming ``name`` and the range (bools are refused)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
     try:
         iv = int(value)
     except (TypeError, ValueError):
@@ -56,6 +58,18 @@ def check_float(value, name: str, lo: float, hi: float = np.inf, *, lo_open: boo
         br = "(" if lo_open else "["
         raise ValueError(f"{name} must lie in {br}{lo}, {hi}], got {value!r}")
     return x
+
+
+def check_bool(value, name: str) -> bool:
+    """``True``/``False`` (numpy bools too) or a ``ValueError`` naming ``name`` -- never ``bool("False")``."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+MIN_SIGMA_CELLS = 1.0
+"""A cell method refuses a first station with sqrt(tau) < MIN_SIGMA_CELLS * dp (the PDF would be narrower
+than a cell); the start-up is placed at sqrt(tau0) >= 2 dp where the first station allows it."""
 
 
 @dataclass
@@ -140,13 +154,14 @@ class Solver:
         V = np.atleast_1d(np.asarray(V_target, dtype=float))
         return np.atleast_1d(self.problem.psd.zeta_of_V(V, self.problem.E_star))
 
-    def start_zeta(self, zeta0=None, tau0_fraction=None) -> float:
+    def start_zeta(self, zeta0=None, tau0_fraction=None, dp=None) -> float:
         """Start-up magnification zeta0 of an ``initial="exact"`` run.
 
         ``zeta0`` if given (in [1, first station]); else where tau is ``tau0_fraction`` x tau(zeta_max)
         for the load with the largest tau -- but at most half of that load's tau at the first output
-        station, so that the start always lies before it.  tau(V) is inverted by a table and one
-        Newton step with dtau/dV = S(A*) (to ~1e-12).
+        station, so that the start always lies before it, and, on a grid of spacing ``dp``, not below
+        tau = 2 dp^2 where that station allows it (an unresolved start would spoil every later station).
+        tau(V) is inverted by a table and one Newton step with dtau/dV = S(A*) (to ~1e-12).
         """
         pr = self.problem
         if zeta0 is not None:
@@ -156,6 +171,8 @@ class Solver:
         tt = pr.tau_of_V(np.array([V_max, V_first]))  # (2, n_loads)
         j = int(np.argmax(tt[0]))
         target = min(frac * float(tt[0, j]), 0.5 * float(tt[1, j]))
+        if dp is not None:
+            target = max(target, min(2.0 * dp**2, 0.5 * float(tt[1, j])))
         if isinstance(pr.fudge, NoFudge):
             V0 = target  # tau = V
         else:  # tau(V) is increasing
@@ -165,6 +182,23 @@ class Solver:
             slope = float(pr.fudge.S(erf(pr.p_bar[j] / np.sqrt(2.0 * t0))))
             V0 = min(max(V0 - (t0 - target) / slope, 0.0), V_max)
         return float(self.zeta_from_V(V0)[0])
+
+    def check_resolved(self, dp: float, what: str = "n_p") -> None:
+        """Raise ``ValueError`` unless the first output station is resolved on a grid of spacing ``dp``.
+
+        sqrt(tau(first station)) must be >= MIN_SIGMA_CELLS * dp for the smallest-tau load; the
+        message names the ``n_p`` that would resolve it (or suggests a later first station).
+        """
+        pr = self.problem
+        tau_first = float(np.min(pr.tau_of_V(pr.V(self.zeta_out[0]))))
+        need = MIN_SIGMA_CELLS * dp
+        if np.sqrt(tau_first) < need:
+            grow = need / np.sqrt(tau_first)
+            raise ValueError(
+                f"{self.name}: the first output station zeta = {self.zeta_out[0]:.6g} is not resolved by the grid "
+                f"(sqrt(tau) = {np.sqrt(tau_first):.3e} < {MIN_SIGMA_CELLS:g} cells of {dp:.3e}); "
+                f"raise {what} by a factor >= {grow:.3g}, lower k_domain, or start zeta_out later"
+            )
 
     def initial_cell_averages(self, edges):
         """Start of a cell-average method on the grid ``edges``: ``(zeta0, V0, P, A)``.
@@ -182,7 +216,8 @@ class Solver:
             idx = np.minimum(np.searchsorted(edges, pr.p_bar, side="right") - 1, n_p - 1)
             P[np.arange(pr.n_loads), idx] = 1.0 / dp[idx]
             return 1.0, 0.0, P, np.ones(pr.n_loads)
-        z0 = self.start_zeta(o["zeta0"], o["tau0_fraction"])
+        self.check_resolved(float(np.max(dp)))
+        z0 = self.start_zeta(o["zeta0"], o["tau0_fraction"], dp=float(np.max(dp)))
         ex = self.exact_at(z0)
         F = np.asarray(ex.cdf_contact(edges)).reshape(pr.n_loads, -1)
         P = np.ascontiguousarray(np.diff(F, axis=-1) / dp)

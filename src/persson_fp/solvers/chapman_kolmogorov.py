@@ -117,8 +117,8 @@ def _cell_erfc(edges, t):
     far cells keep their (tiny) values without cancellation against 1.
     """
     s = np.sqrt(2.0 * np.asarray(t, float))[..., None]
-    z = edges / s
-    with np.errstate(under="ignore"):
+    with np.errstate(under="ignore", over="ignore"):  # t -> 0: z -> inf, exp(-z^2) -> 0, z erfcx(z) -> 1/sqrt(pi)
+        z = edges / s
         Ec = s * np.exp(-z * z) * (z * erfcx(z) - 1.0 / _SQRTPI)
     return np.diff(Ec, axis=-1) / np.diff(edges)
 
@@ -275,6 +275,7 @@ class ChapmanKolmogorovSolver(Solver):
         edges = h * np.arange(n + 1)
         centres = edges[:-1] + 0.5 * h
         c_var = h * h / 6.0 if o["variance_correction"] else 0.0
+        self.check_resolved(h)
 
         A_grid = np.linspace(0.0, 1.0, 2001)
         S_vals = np.asarray(fud.S(A_grid), float)
@@ -285,7 +286,7 @@ class ChapmanKolmogorovSolver(Solver):
             tau = np.zeros(L)
             P = None
         else:
-            zeta0 = self.start_zeta(o["zeta0"], o["tau0_fraction"])
+            zeta0 = self.start_zeta(o["zeta0"], o["tau0_fraction"], dp=h)
             V_start = float(pr.V(zeta0))
             tau = np.asarray(pr.tau_of_V(V_start), float).reshape(L)
             P = _image_cell_averages(edges, pb, tau)

@@ -50,9 +50,9 @@ walkers interact weakly through S(A*), which adds an :math:`O(1/N)` bias.
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import erf
 
 from .. import fudge as _fudge
+from ..exact import area_from_tau
 from .base import Solver, SolverOutput, check_float, check_int
 from .chapman_kolmogorov import ChapmanKolmogorovSolver, _cell_erfc
 
@@ -63,8 +63,7 @@ def _area_from_delta(p_bar):
     """A*(tau) of walkers that all sit at p_bar at tau = 0: erf(p_bar / sqrt(2 tau))."""
 
     def area(tau):
-        with np.errstate(divide="ignore"):
-            return erf(np.divide(p_bar, np.sqrt(2.0 * tau), out=np.full(tau.shape, np.inf), where=tau > 0))
+        return area_from_tau(p_bar, tau)
 
     return area
 
