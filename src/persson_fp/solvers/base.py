@@ -133,6 +133,37 @@ class Solver:
         raise NotImplementedError
 
     # -- shared machinery ------------------------------------------------------------------------
+    def validate_start_options(self) -> None:
+        """Check the start-up and domain options a cell method shares (present ones only):
+        ``tau0_fraction`` in (0, 1], ``k_domain`` in (0, 100], ``zeta0`` in [1, first station],
+        ``allow_unstable`` a real bool."""
+        o = self.opts
+        if o.get("tau0_fraction") is not None:
+            o["tau0_fraction"] = check_float(o["tau0_fraction"], "tau0_fraction", 0.0, 1.0)
+        if "k_domain" in o:
+            o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 100.0)
+        if "allow_unstable" in o:
+            o["allow_unstable"] = check_bool(o["allow_unstable"], "allow_unstable")
+        if o.get("zeta0") is not None:
+            check_float(o["zeta0"], "zeta0", 1.0, float(self.zeta_out[0]))
+
+    def uniform_V_nodes(self, V_start: float, n_steps: int):
+        """Step ends uniform in V within each station interval (every station a node), and station indices.
+
+        Steps per interval are proportional to its V length (at least one).
+        """
+        V_out = np.atleast_1d(self.problem.V(self.zeta_out)).astype(float)
+        bounds = np.concatenate(([V_start], V_out))
+        total = bounds[-1] - bounds[0]
+        nodes, stations = [V_start], []
+        for a, c in zip(bounds[:-1], bounds[1:]):
+            m = max(1, int(round(n_steps * (c - a) / total)))
+            seg = a + (c - a) * np.arange(1, m + 1) / m
+            seg[-1] = c
+            nodes.extend(seg.tolist())
+            stations.append(len(nodes) - 1)
+        return np.array(nodes), stations
+
     def _check_zeta_out(self, zeta_out) -> np.ndarray:
         zmax = self.problem.zeta_max
         if zeta_out is None:

@@ -195,21 +195,12 @@ class ChapmanKolmogorovSolver(Solver):
             raise ValueError(f"variance_correction must be True or False, got {o['variance_correction']!r}")
         if o["initial"] == "delta" and o["zeta0"] is not None:
             raise ValueError("zeta0 is only used with initial='exact'")
+        self.validate_start_options()
 
     # -- step plan ------------------------------------------------------------------------------------
     def _step_nodes(self, V_start):
         """V at the step ends (uniform in V within each station interval) and the station indices."""
-        V_out = np.atleast_1d(self.problem.V(self.zeta_out)).astype(float)
-        bounds = np.concatenate(([V_start], V_out))
-        total = bounds[-1] - bounds[0]
-        nodes, stations = [V_start], []
-        for a, b in zip(bounds[:-1], bounds[1:]):
-            m = max(1, int(round(self.opts["n_steps"] * (b - a) / total)))
-            seg = a + (b - a) * np.arange(1, m + 1) / m
-            seg[-1] = b
-            nodes.extend(seg.tolist())
-            stations.append(len(nodes) - 1)
-        return np.array(nodes), stations
+        return self.uniform_V_nodes(V_start, self.opts["n_steps"])
 
     # -- fudge coupling -------------------------------------------------------------------------------
     @staticmethod

@@ -55,7 +55,7 @@ import numpy as np
 from ..fudge import NoFudge
 from ..solution import InstabilityError
 from ._stepping import r_per_step, step_nodes
-from .base import Solver, SolverOutput, check_bool, check_float, check_int
+from .base import Solver, SolverOutput, check_float, check_int
 
 __all__ = ["FiPySolver", "SCHEMES", "LINEAR_SOLVERS"]
 
@@ -129,11 +129,7 @@ class FiPySolver(Solver):
         o["pcg_tol"] = check_float(o["pcg_tol"], "pcg_tol", 0.0, 1.0)
         o["sweep_tol"] = check_float(o["sweep_tol"], "sweep_tol", 0.0, 1.0)
         o["max_sweeps"] = check_int(o["max_sweeps"], "max_sweeps", 1)
-        o["tau0_fraction"] = check_float(o["tau0_fraction"], "tau0_fraction", 0.0, 1.0)
-        o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 100.0)
-        o["allow_unstable"] = check_bool(o["allow_unstable"], "allow_unstable")
-        if o["zeta0"] is not None:
-            check_float(o["zeta0"], "zeta0", 1.0, float(self.zeta_out[0]))
+        self.validate_start_options()
 
     def _solve(self) -> SolverOutput:
         import fipy

@@ -119,7 +119,7 @@ from scipy.linalg import lapack
 
 from ..fudge import NoFudge
 from ..solution import InstabilityError
-from .base import Solver, SolverOutput, check_bool, check_float, check_int
+from .base import Solver, SolverOutput, check_float, check_int
 
 __all__ = ["FiniteVolumeSolver", "SCHEMES", "rhs", "banded_operator", "apply_operator", "dst_eigenvalues"]
 
@@ -469,13 +469,9 @@ class FiniteVolumeSolver(Solver):
                 raise ValueError(f"{key} must be one of {list(allowed)}, got {o[key]!r}")
         o["picard_tol"] = check_float(o["picard_tol"], "picard_tol", 0.0, 1.0)
         o["picard_maxiter"] = check_int(o["picard_maxiter"], "picard_maxiter", 1)
-        o["tau0_fraction"] = check_float(o["tau0_fraction"], "tau0_fraction", 0.0, 1.0)
-        o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 100.0)
         o["rannacher_steps"] = check_int(o["rannacher_steps"], "rannacher_steps", 0)
         o["check_every"] = check_int(o["check_every"], "check_every", 1)
-        o["allow_unstable"] = check_bool(o["allow_unstable"], "allow_unstable")
-        if o["zeta0"] is not None:
-            check_float(o["zeta0"], "zeta0", 1.0, float(self.zeta_out[0]))
+        self.validate_start_options()
 
     # -- set-up --------------------------------------------------------------------------------
     def _start(self):

@@ -151,17 +151,8 @@ class MonteCarloSolver(Solver):
             raise ValueError(f"seed must be None, an integer >= 0, a SeedSequence or a numpy Generator, got {seed!r}")
 
     def _step_nodes(self):
-        """V at the step ends (uniform in V within each station interval) and the station indices."""
-        V_out = np.atleast_1d(self.problem.V(self.zeta_out)).astype(float)
-        bounds = np.concatenate(([0.0], V_out))
-        nodes, stations = [0.0], []
-        for a, b in zip(bounds[:-1], bounds[1:]):
-            m = max(1, int(round(self.opts["n_steps"] * (b - a) / bounds[-1])))
-            seg = a + (b - a) * np.arange(1, m + 1) / m
-            seg[-1] = b
-            nodes.extend(seg.tolist())
-            stations.append(len(nodes) - 1)
-        return np.array(nodes), stations
+        """V at the step ends (uniform in V within each station interval, from V = 0) and the station indices."""
+        return self.uniform_V_nodes(0.0, self.opts["n_steps"])
 
     @staticmethod
     def _advance(p, li, dtau, rng, bridge):

@@ -76,7 +76,7 @@ import numpy as np
 from ..fudge import NoFudge, WangMuser, YangPersson
 from ..solution import InstabilityError, SolverError
 from ._stepping import _pchip_map, r_per_step, step_nodes
-from .base import Solver, SolverOutput, check_bool, check_float, check_int
+from .base import Solver, SolverOutput, check_float, check_int
 
 __all__ = ["PyPDESolver", "SOLVERS", "BACKENDS"]
 
@@ -267,11 +267,7 @@ class PyPDESolver(Solver):
         if not isinstance(o["scipy_method"], str):
             raise ValueError(f"scipy_method must be a solve_ivp method name, got {o['scipy_method']!r}")
         o["picard_maxiter"] = check_int(o["picard_maxiter"], "picard_maxiter", 1)
-        o["tau0_fraction"] = check_float(o["tau0_fraction"], "tau0_fraction", 0.0, 1.0)
-        o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 100.0)
-        o["allow_unstable"] = check_bool(o["allow_unstable"], "allow_unstable")
-        if o["zeta0"] is not None:
-            check_float(o["zeta0"], "zeta0", 1.0, float(self.zeta_out[0]))
+        self.validate_start_options()
 
     # -- set-up shared with the FiPy backend -----------------------------------------------------
     def _start(self, edges):
