@@ -95,3 +95,23 @@ def test_options_validated():
     with pytest.warns(UserWarning, match="n_steps"):
         pf.solve(pr, "sines", n_steps=10)
     assert SineSeriesSolver.name == "sines"
+
+
+@pytest.mark.parametrize("fudge", ["YP08", "WM17"])
+def test_tiny_loads_with_fudge_need_few_modes(fudge):
+    """The tau map sums the series through its image dual below tau_N: no mode count ~ 1 / p_bar."""
+    pr = pf.ContactProblem.reference(fudge=fudge, p_bar_ratio=np.array([1e-4, 1e-2, 3.0]))
+    sol = pf.solve(pr, "sines")
+    assert sol.info["n_modes"] < 2000  # was 1.4e6 for 1e-4 sqrt(V)
+    err = sol.compare()
+    assert err.max_L1 < 1e-10 and err.max_area_error < 1e-12
+
+
+def test_image_dual_equals_the_converged_series():
+    """Poisson summation: the image sum and the (converged) sine series are the same function."""
+    from persson_fp.solvers.sines import image_area
+
+    L, pb = 1.0, 0.3
+    for tau in (1e-3, 1e-2, 0.05):
+        n = int(modes_needed(L, tau, 1e-15))
+        assert image_area(L, pb, tau) == pytest.approx(float(series_area(L, pb, tau, n)), abs=1e-14)

@@ -39,16 +39,14 @@ and is solved per load by a Chebyshev interpolant of the integrand in
 stations.  This is the "scalar ODE per load", solved to ``rtol`` with
 spectral rather than step-size control.
 
-*Tiny tau.*  For :math:`\tau \le \tau_{sw}` the series area is 1 to round-off:
-the infinite series equals the image sum on [0, L] (Poisson summation), whose
-mass defect is :math:`\mathrm{erfc}(\bar p/\sqrt{2\tau}) < 2\cdot10^{-17}` for
-:math:`\tau \le \bar p^2/72`; there :math:`\tau = S(1)\,V` exactly.  A
-truncated series would need :math:`\propto L/\sqrt\tau` modes to show this,
-so the switch also waits until the chosen mode count is converged
-(:math:`\tau_{sw} = \max(\bar p^2/72, \tau_N)`, :math:`\tau_N` where the
-first dropped mode is below ``tol``).  The default mode count is the one
-that makes the truncation below ``tol`` at the smallest tau that matters
-(:math:`\bar p^2/72` with a fudge factor, else the first output station).
+*Tiny tau.*  For :math:`\tau \le \tau_{sw} = \bar p^2/72` the series area is 1 to round-off:
+the infinite series equals the image sum on [0, L] (Poisson summation), whose mass defect is
+:math:`\mathrm{erfc}(\bar p/\sqrt{2\tau}) < 2\cdot10^{-17}` there, so :math:`\tau = S(1)\,V` exactly.
+Between :math:`\tau_{sw}` and :math:`\tau_N` (where the chosen N modes are converged to ``tol``)
+the same infinite series is summed in that dual form (:func:`image_area`, images |k| <= 1,
+the rest below e^-200), so the mode count only has to serve the output stations: the default
+is the one that makes the truncation below ``tol`` at the first station.  (Before, N was sized
+for :math:`\bar p^2/72`, and a load of 1e-4 sqrt(V) with a fudge factor needed 1.4 million modes.)
 """
 
 from __future__ import annotations
@@ -61,7 +59,7 @@ from scipy.fft import dct
 from ..fudge import NoFudge
 from .base import Solver, SolverOutput, check_float, check_int
 
-__all__ = ["SineSeriesSolver", "series_area", "series_pdf", "modes_needed"]
+__all__ = ["SineSeriesSolver", "series_area", "image_area", "series_pdf", "modes_needed"]
 
 _X_SWITCH = 6.0
 """A* = 1 to round-off while p_bar / sqrt(2 tau) >= 6 (erfc(6) = 2.2e-17)."""
@@ -93,6 +91,24 @@ def series_area(L: float, p_bar, tau, n_modes: int) -> np.ndarray:
     with np.errstate(under="ignore"):
         terms = (4.0 / L) * np.sin(k * p_bar[..., None]) / k * np.exp(-0.5 * k * k * tau[..., None])
     return terms.sum(axis=-1)
+
+
+def image_area(L: float, p_bar, tau) -> np.ndarray:
+    r"""Area of the infinite sine series summed as its Poisson dual, the image sum on [0, L].
+
+    :math:`P_0 = \sum_k [\rho(p; 2kL+\bar p) - \rho(p; 2kL-\bar p)]` integrated over [0, L], k = -1, 0, 1
+    (the others are below :math:`e^{-(2L-\bar p)^2/2\tau}`, < e^-200 on the default domain).  Equal to
+    :func:`series_area` with infinitely many modes; cheap where the series needs many.
+    """
+    from scipy.special import erf
+
+    p_bar, tau = np.broadcast_arrays(np.asarray(p_bar, float), np.asarray(tau, float))
+    s = np.sqrt(2.0 * tau)
+
+    def F(c):  # int_0^L rho(p; c, tau) dp
+        return 0.5 * (erf((L - c) / s) + erf(c / s))
+
+    return sum(F(2.0 * k * L + p_bar) - F(2.0 * k * L - p_bar) for k in (-1, 0, 1))
 
 
 def series_pdf(p, L: float, p_bar: float, tau: float, n_modes: int) -> np.ndarray:
@@ -191,7 +207,7 @@ class SineSeriesSolver(Solver):
         S1 = float(fudge.S(np.array(1.0)))
         S_max = float(np.max(fudge.S(np.linspace(0.0, 1.0, 2001))))
         tau_N = 2.0 * (np.log(2.0 / tol) + np.log(4.0)) * (L / (np.pi * (N + 1))) ** 2
-        tau_sw = np.maximum(pb**2 / (2.0 * _X_SWITCH**2), tau_N)  # (n_loads,)
+        tau_sw = pb**2 / (2.0 * _X_SWITCH**2)  # (n_loads,) A* = 1 to round-off below
         V_sw = tau_sw / S1
         V_max = float(V_out[-1])
         tau_hi = tau_sw + max(V_max - V_sw.min(), 0.0) * S_max * (1.0 + 1e-9) + 1e-300
@@ -204,6 +220,11 @@ class SineSeriesSolver(Solver):
         def g(x):  # dV/dx = tau / S(A(tau)), x = ln tau; shape (m, n_loads)
             tau = np.exp(x)
             A = np.stack([series_area(L, pb[j], tau[:, j], int(N_j[j])) for j in range(pb.size)], axis=1)
+            # where N modes are not yet converged (tau < tau_N) the same infinite series is summed in its
+            # Poisson-dual form, the image sum on [0, L] (exact; images beyond |k| = 1 are below e^-200)
+            small = tau < tau_N
+            if np.any(small):
+                A = np.where(small, image_area(L, pb[None, :], tau), A)
             return tau / fudge.S(np.clip(A, 0.0, 1.0))
 
         for m in (33, 65, 129, 257, 513, 1025, 2049):
@@ -252,13 +273,10 @@ class SineSeriesSolver(Solver):
             if o["n_p"] is not None:
                 N = o["n_p"]
             else:
-                # smallest tau that matters: the first station (tau >= min(S) V there), and with a
-                # fudge factor the switch p_bar^2/72 where the series starts to carry the area
+                # smallest tau that matters: the first station (tau >= min(S) V there); below it the
+                # fudge factor's tau map evaluates the series area through its image dual (_tau_map)
                 S_min = float(np.min(pr.fudge.S(np.linspace(0.0, 1.0, 201))))
-                tau_min = S_min * V_out[0]
-                if not isinstance(pr.fudge, NoFudge):
-                    tau_min = min(tau_min, float(np.min(pb)) ** 2 / (2.0 * _X_SWITCH**2))
-                N = int(modes_needed(L, tau_min, tol))
+                N = int(modes_needed(L, S_min * V_out[0], tol))
         tau, tinfo = self._tau_map(L, N, V_out)  # (n_zeta, n_loads)
 
         # output modes: those above tol / 1e3 at the first station, at most N
