@@ -57,14 +57,14 @@ def studies(pr, quick: bool) -> list[dict]:
             direction="p",
             method="fv",
             expected=4,
-            runs=[dict(space="compact4", scheme="tr-bdf2", n_p=n, n_steps=fine_steps) for n in n4],
+            runs=[dict(space="compact4", stepping="tau", scheme="tr-bdf2", n_p=n, n_steps=fine_steps) for n in n4],
         ),
         dict(
             label="fv fv2 (tr-bdf2)",
             direction="p",
             method="fv",
             expected=2,
-            runs=[dict(space="fv2", scheme="tr-bdf2", n_p=n, n_steps=fine_steps) for n in n2],
+            runs=[dict(space="fv2", stepping="tau", scheme="tr-bdf2", n_p=n, n_steps=fine_steps) for n in n2],
         ),
         dict(
             label="mol order 4",
@@ -86,7 +86,7 @@ def studies(pr, quick: bool) -> list[dict]:
             method="fv",
             expected=4,
             runs=[
-                dict(space="fv2", scheme="explicit", n_p=n, n_steps=explicit_steps(pr, n, 1 / 6))
+                dict(space="fv2", stepping="tau", scheme="explicit", n_p=n, n_steps=explicit_steps(pr, n, 1 / 6))
                 for n in ((25, 50, 100) if q else (25, 50, 100, 200))
             ],
         ),
@@ -96,7 +96,7 @@ def studies(pr, quick: bool) -> list[dict]:
             method="fv",
             expected=2,
             runs=[
-                dict(space="fv2", scheme="explicit", n_p=n, n_steps=explicit_steps(pr, n, 0.4))
+                dict(space="fv2", stepping="tau", scheme="explicit", n_p=n, n_steps=explicit_steps(pr, n, 0.4))
                 for n in ((25, 50, 100) if q else (25, 50, 100, 200))
             ],
         ),
@@ -139,7 +139,7 @@ def studies(pr, quick: bool) -> list[dict]:
                 direction="step",
                 method="fv",
                 expected=order,
-                runs=[dict(space="compact4", scheme=scheme, n_p=800, n_steps=s) for s in steps],
+                runs=[dict(space="compact4", stepping="tau", scheme=scheme, n_p=800, n_steps=s) for s in steps],
             )
         )
     if not q:

@@ -93,7 +93,14 @@ def run_explicit(pr, method, space, n_p, r, initial):
     }
     if method == "fv":
         opts = dict(
-            scheme="explicit", space=space, n_p=n_p, n_steps=n, initial=initial, allow_unstable=True, check_every=1
+            scheme="explicit",
+            stepping="tau",
+            space=space,
+            n_p=n_p,
+            n_steps=n,
+            initial=initial,
+            allow_unstable=True,
+            check_every=1,
         )
     elif method == "py-pde":
         opts = dict(solver="euler", n_p=n_p, cfl=2.0 * r_act, initial=initial, allow_unstable=True)
@@ -194,7 +201,14 @@ def ringing(pr, quick):
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 sol = pf.solve(
-                    pr, "fv", scheme=scheme, initial="delta", n_p=200, n_steps=n, zeta_out=[4.0, pr.zeta_max]
+                    pr,
+                    "fv",
+                    stepping="tau",
+                    scheme=scheme,
+                    initial="delta",
+                    n_p=200,
+                    n_steps=n,
+                    zeta_out=[4.0, pr.zeta_max],
                 )
             ex = sol.exact_on_grid()
             c = sol.compare()
@@ -222,7 +236,7 @@ def smearing(pr, quick):
     rows = []
     for scheme in ("implicit", "tr-bdf2"):
         for n in steps:
-            sol = pf.solve(pr, "fv", scheme=scheme, n_p=400, n_steps=n)
+            sol = pf.solve(pr, "fv", stepping="tau", scheme=scheme, n_p=400, n_steps=n)
             ex = pf.exact(pr)
             rows.append(
                 {
@@ -269,7 +283,7 @@ def coupling(quick):
     rows = []
     for cp in ("lagged", "predictor", "picard"):
         for n in steps:
-            sol = pf.solve(pr, "fv", scheme="tr-bdf2", coupling=cp, n_p=400, n_steps=n)
+            sol = pf.solve(pr, "fv", stepping="tau", scheme="tr-bdf2", coupling=cp, n_p=400, n_steps=n)
             rows.append(
                 {
                     "coupling": cp,

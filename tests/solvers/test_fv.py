@@ -205,12 +205,14 @@ def test_explicit_unstable_blows_up_with_fudge(problems, linalg):
 
 def test_crank_nicolson_rings_on_delta_tr_bdf2_does_not(problems):
     with pytest.warns(RuntimeWarning, match="negative"):
-        cn = pf.solve(problems[None], "fv", scheme="crank-nicolson", initial="delta", n_p=200, n_steps=20)
+        cn = pf.solve(
+            problems[None], "fv", scheme="crank-nicolson", initial="delta", n_p=200, n_steps=20, stepping="tau"
+        )
     assert cn.info["checks"]["negative_P0"]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         for scheme in ("tr-bdf2", "rannacher"):
-            sol = pf.solve(problems[None], "fv", scheme=scheme, initial="delta", n_p=200, n_steps=20)
+            sol = pf.solve(problems[None], "fv", scheme=scheme, initial="delta", n_p=200, n_steps=20, stepping="tau")
             assert not sol.info["checks"]["negative_P0"]
             assert sol.info["zeta0"] == 1.0
 
@@ -240,7 +242,7 @@ def test_misspelt_option(problems):
         FiniteVolumeSolver(problems[None], schem="implicit")
 
 
-@pytest.mark.parametrize("stepping", ["geometric", "zeta", "tau"])
+@pytest.mark.parametrize("stepping", ["geometric", "zeta", "tau", "graded"])
 def test_steppings(problems, stepping):
     sol, c = errors(problems["WM17"], stepping=stepping)
     assert sol.info["steps"] == 100

@@ -50,12 +50,12 @@ With the default compact 4th-order space discretisation the explicit scheme is s
         "code",
         r"""
 try:
-    pf.solve(problem, method="fv", scheme="explicit", n_steps=100)
+    pf.solve(problem, method="fv", stepping="tau", scheme="explicit", n_steps=100)
 except ValueError as err:
     refusal = str(err)
     print("ValueError:", refusal)
 n_min = int(refusal.split("n_steps to >= ")[1].split(",")[0])
-ok = pf.solve(problem, method="fv", scheme="explicit", n_steps=n_min)
+ok = pf.solve(problem, method="fv", stepping="tau", scheme="explicit", n_steps=n_min)
 print(f"with n_steps = {n_min}: r = {ok.info['r_max']:.4f}, L1 = {ok.compare().final()['L1']:.2e}")
 """,
     ),
@@ -77,7 +77,7 @@ n_steps_list = [300, 400, 500, 600, 700, 760, 785, 800, 1000]
 atlas = []
 for n in n_steps_list:
     try:
-        sol = pf.solve(problem, method="fv", scheme="explicit", n_steps=n, allow_unstable=True)
+        sol = pf.solve(problem, method="fv", stepping="tau", scheme="explicit", n_steps=n, allow_unstable=True)
         atlas.append((n, ok.info["r_max"] * n_min / n, "ok", sol.compare().final()["L1"], np.nan))
     except pf.InstabilityError as err:
         msg = str(err)
@@ -101,7 +101,7 @@ for z in zeta_stop:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            sol = pf.solve(problem, method="fv", scheme="explicit", n_steps=n, allow_unstable=True,
+            sol = pf.solve(problem, method="fv", stepping="tau", scheme="explicit", n_steps=n, allow_unstable=True,
                            check_every=10**9, zeta_out=z)
     except pf.InstabilityError:
         break
@@ -160,7 +160,7 @@ ring = {}
 for scheme in ["crank-nicolson", "rannacher", "tr-bdf2"]:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        sol = pf.solve(problem, method="fv", scheme=scheme, initial="delta", n_steps=100, zeta_out=ZS)
+        sol = pf.solve(problem, method="fv", stepping="tau", scheme=scheme, initial="delta", n_steps=100, zeta_out=ZS)
     ring[scheme] = sol
     print(f"{scheme:15s} min P0 = {sol.info['checks']['min_P0']:+.3e}, L1 at the stations = "
           + ", ".join(f"{v:.1e}" for v in sol.compare().L1[:, 0]))
@@ -203,7 +203,7 @@ conv = {}
 with warnings.catch_warnings(record=True) as caught:
     warnings.simplefilter("always")
     for scheme in ["implicit", "crank-nicolson", "tr-bdf2"]:
-        conv[scheme] = [pf.solve(problem, method="fv", scheme=scheme, n_steps=n, n_p=800).compare().final()["L1"]
+        conv[scheme] = [pf.solve(problem, method="fv", stepping="tau", scheme=scheme, n_steps=n, n_p=800).compare().final()["L1"]
                         for n in steps]
 for w in caught:  # coarse Crank-Nicolson steps ring even from the exact start
     print("warning:", w.message)
@@ -218,7 +218,7 @@ ax0.legend(fontsize=8)
 coarse = {}
 warnings.simplefilter("ignore", RuntimeWarning)  # the coarse CN warning was shown above
 for k, scheme in enumerate(["implicit", "crank-nicolson", "tr-bdf2"]):
-    sol = pf.solve(problem, method="fv", scheme=scheme, n_steps=5, n_p=800, zeta_out=[2.0, 128.0])
+    sol = pf.solve(problem, method="fv", stepping="tau", scheme=scheme, n_steps=5, n_p=800, zeta_out=[2.0, 128.0])
     coarse[scheme] = sol
     ax1.plot(sol.p / s, (sol.P0[0] - sol.exact_on_grid()[0, 0]) * s, color=f"C{k}", label=scheme)
 ax1.set_xlim(0, 2)
@@ -296,7 +296,7 @@ coupling = {}
 for c in ["lagged", "predictor", "picard"]:
     out = []
     for n in steps_c:
-        sol = pf.solve(problem_yp, method="fv", coupling=c, n_steps=n, n_p=400, linalg="banded")
+        sol = pf.solve(problem_yp, method="fv", stepping="tau", coupling=c, n_steps=n, n_p=400, linalg="banded")
         out.append((sol.compare().final()["area_error"], sol.wall_time, sol.info["tridiagonal_solves"]))
     coupling[c] = np.array(out)
 fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11, 3.8), layout="constrained")
