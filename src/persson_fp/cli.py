@@ -31,8 +31,8 @@ self-affine, H = 0.8, q_l = 1, q_r = 2, q_s = 128 (zeta_max = 128), rms slope 0.
 p_bar = 0.5 sqrt(V(zeta_max)).  Units: any consistent set (the defaults are dimensionless).
 
 commands:
-  report   (default) table of V, A*, Var(p), elastic energy for every fudge model, every installed
-           solver checked against the exact solution, and PNG figures
+  report   (default) table of V, A*, Var(p), elastic energy for every fudge model, persson-fp's own
+           solvers checked against the exact solution (--all-methods adds py-pde and FiPy), PNG figures
   solve    solve one problem (your surface and loads) with a chosen method; CSV/JSON/PNG output
   area     the contact-area curve A*(p_bar) for a range of loads, every fudge model (CSV + PNG)
 
