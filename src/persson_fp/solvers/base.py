@@ -147,6 +147,11 @@ class Solver:
         if o.get("zeta0") is not None:
             check_float(o["zeta0"], "zeta0", 1.0, float(self.zeta_out[0]))
 
+    def cell_grid(self, n_p: int):
+        """Uniform cells on [0, p_max], p_max = ``problem.p_max(opts["k_domain"])``: (edges (n_p + 1,), dp)."""
+        p_max = self.problem.p_max(self.opts["k_domain"])
+        return np.linspace(0.0, p_max, n_p + 1), p_max / n_p
+
     def uniform_V_nodes(self, V_start: float, n_steps: int):
         """Step ends uniform in V within each station interval (every station a node), and station indices.
 

@@ -261,9 +261,8 @@ class ChapmanKolmogorovSolver(Solver):
         n = o["n_p"]
         fud = pr.fudge
         const_S = isinstance(fud, _fudge.NoFudge)
-        p_max = pr.p_max(o["k_domain"])
-        h = p_max / n
-        edges = h * np.arange(n + 1)
+        edges, h = self.cell_grid(n)
+        p_max = edges[-1]
         centres = edges[:-1] + 0.5 * h
         c_var = h * h / 6.0 if o["variance_correction"] else 0.0
         self.check_resolved(h)

@@ -136,9 +136,8 @@ class FiPySolver(Solver):
 
         o, pr = self.opts, self.problem
         N = o["n_p"]
-        p_max = pr.p_max(o["k_domain"])
-        edges = np.linspace(0.0, p_max, N + 1)
-        dp = p_max / N
+        edges, dp = self.cell_grid(N)
+        p_max = edges[-1]
         z0, V0, P_init, A_init = self.initial_cell_averages(edges)
         V_st = np.concatenate(([V0], np.atleast_1d(pr.V(self.zeta_out)).astype(float)))
         explicit = o["scheme"] == "explicit"

@@ -558,9 +558,8 @@ class FiniteVolumeSolver(Solver):
         S = pr.fudge.S
 
         self.n_p = N = o["n_p"]
-        p_max = pr.p_max(o["k_domain"])
-        self.dp = dp = p_max / N
-        self.edges = np.linspace(0.0, p_max, N + 1)
+        self.edges, self.dp = self.cell_grid(N)
+        dp, p_max = self.dp, self.edges[-1]
         p = 0.5 * (self.edges[1:] + self.edges[:-1])
         m = pr.n_loads
 

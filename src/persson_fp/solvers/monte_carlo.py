@@ -175,9 +175,8 @@ class MonteCarloSolver(Solver):
         n_p = o["n_p"]
         fud = pr.fudge
         const_S = isinstance(fud, _fudge.NoFudge)
-        p_max = pr.p_max(o["k_domain"])
-        h = p_max / n_p
-        edges = h * np.arange(n_p + 1)
+        edges, h = self.cell_grid(n_p)
+        p_max = edges[-1]
         nodes, stations = self._step_nodes()
         dVs = np.diff(nodes)
         n_st = len(stations)

@@ -269,21 +269,15 @@ class PyPDESolver(Solver):
         o["picard_maxiter"] = check_int(o["picard_maxiter"], "picard_maxiter", 1)
         self.validate_start_options()
 
-    # -- set-up shared with the FiPy backend -----------------------------------------------------
-    def _start(self, edges):
-        """(zeta0, V0, P_init (n_loads, n_p), A_init (n_loads,)) for the option ``initial``."""
-        return self.initial_cell_averages(edges)
-
     # -- the run -------------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
         import pde
 
         o, pr = self.opts, self.problem
         N = o["n_p"]
-        p_max = pr.p_max(o["k_domain"])
-        edges = np.linspace(0.0, p_max, N + 1)
-        dp = p_max / N
-        z0, V0, P_init, A_init = self._start(edges)
+        edges, dp = self.cell_grid(N)
+        p_max = edges[-1]
+        z0, V0, P_init, A_init = self.initial_cell_averages(edges)
         V_st = np.concatenate(([V0], np.atleast_1d(pr.V(self.zeta_out)).astype(float)))
         S_max = float(np.max(pr.fudge.S(np.linspace(0.0, 1.0, 2001))))
         fixed = o["solver"] in _FIXED
