@@ -141,7 +141,7 @@ def test_elastic_energy_and_pressure_spectrum():
         (dict(p_bar=[[1.0]]), "1-D"),
         (dict(p_bar=0.1, E_star=0.0), "E_star must be > 0"),
         (dict(p_bar=0.1, E_star=np.inf), "E_star must be finite"),
-        (dict(p_bar=0.1, fudge=lambda A: A - 0.5), "must be finite and > 0"),
+        (dict(p_bar=0.1, fudge=lambda A: A - 0.5), "must be finite, > 0"),
         (dict(p_bar=0.1, fudge="foo"), "fudge must be"),
     ],
 )
@@ -200,3 +200,22 @@ def test_invariants_property(H, zr, zmax, ratio, fudge):
     assert np.all(np.diff(A) <= 1e-15)
     assert np.all(pf.exact(pr, z[1:]).pdf(np.linspace(0, pr.p_max(), 50)) >= 0)
     assert np.all(np.diff(ex.variance) >= -1e-15)
+
+
+@pytest.mark.parametrize(
+    "make, match",
+    [
+        (lambda pr: pf.fudge.YangPersson(gamma="a"), "gamma of YP08"),
+        (lambda pr: pf.fudge.YangPersson(gamma=None), "gamma of YP08"),
+        (lambda pr: pf.SelfAffinePSD(1e-4, [0.5, 0.6], 1, 2, 10), "H must be a scalar"),
+        (lambda pr: pf.ContactProblem(pr.psd, 1, 0.1, lambda A: "x"), "must return numbers"),
+        (lambda pr: pf.ContactProblem(pr.psd, 1, 0.1, lambda A: 1e300 + 0 * A), "<= 1e"),
+        (lambda pr: pf.TabulatedPSD([[1, 2], [3, 4]], [[1, 1], [1, 1]]), "1-D"),
+        (lambda pr: pf.SelfAffinePSD.from_rms_slope(1e200, 0.8, 1, 2, 10), "rms_slope"),
+        (lambda pr: pf.ContactProblem(pr.psd, 1, 1e300), "p_bar must be <= 1e150"),
+        (lambda pr: pf.solve(pr, "fv", zeta_out=[[2, 3]]), "zeta_out must be a scalar or a 1-D"),
+    ],
+)
+def test_more_bad_input_names_the_parameter(make, match):
+    with pytest.raises(ValueError, match=match):
+        make(pf.ContactProblem.reference())

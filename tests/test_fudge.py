@@ -32,7 +32,7 @@ def test_derivatives_match_finite_differences():
 
 @pytest.mark.parametrize("bad", [lambda A: 1 - 2 * A, lambda A: np.where(A > 0.5, np.nan, 1.0), lambda A: 0 * A])
 def test_user_callable_must_be_positive(bad):
-    with pytest.raises(ValueError, match="must be finite and > 0"):
+    with pytest.raises(ValueError, match="must be finite, > 0"):
         F.resolve(bad)
 
 

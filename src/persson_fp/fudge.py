@@ -60,6 +60,8 @@ GAMMA_XU24 = 0.45
 """Default gamma of the global model of Xu et al. (2024)."""
 
 _CHECK_GRID = np.linspace(0.0, 1.0, 2001)
+S_MAX = 1e6
+"""Largest S(A*) accepted from a user model (physical fudge factors are O(1))."""
 
 
 class FudgeFactor:
@@ -82,17 +84,23 @@ class FudgeFactor:
         return (self.S(hi) - self.S(lo)) / (hi - lo)
 
     def check(self) -> None:
-        """Raise ``ValueError`` unless S is finite and > 0 on a fine grid of [0, 1]."""
-        with np.errstate(all="ignore"):
-            s = np.asarray(self.S(_CHECK_GRID), dtype=float)
+        """Raise ``ValueError`` unless S is a number in (0, S_MAX] on a fine grid of [0, 1].
+
+        (A physical fudge factor is O(1); the bound keeps tau = int S dV representable.)
+        """
+        try:
+            with np.errstate(all="ignore"):
+                s = np.asarray(self.S(_CHECK_GRID), dtype=float)
+        except (TypeError, ValueError) as err:
+            raise ValueError(f"fudge factor {self.name}: S(A*) must return numbers, got an error: {err}") from None
         if s.shape != _CHECK_GRID.shape:
             s = np.broadcast_to(s, _CHECK_GRID.shape)
-        bad = ~np.isfinite(s) | (s <= 0)
+        bad = ~np.isfinite(s) | (s <= 0) | (s > S_MAX)
         if np.any(bad):
             a = _CHECK_GRID[np.argmax(bad)]
             raise ValueError(
-                f"fudge factor {self.name}: S(A*) must be finite and > 0 for A* in [0, 1]; "
-                f"S({a:.4g}) = {s[np.argmax(bad)]!r}"
+                f"fudge factor {self.name}: S(A*) must be finite, > 0 and <= {S_MAX:g} for A* in [0, 1]; "
+                f"S({a:.4g}) = {float(s[np.argmax(bad)])!r}"
             )
 
 
@@ -110,7 +118,10 @@ class NoFudge(FudgeFactor):
 
 
 def _check_gamma(gamma, name, lo, hi):
-    g = float(gamma)
+    try:
+        g = float(gamma)
+    except (TypeError, ValueError):
+        raise ValueError(f"gamma of {name} must be a number in ({lo}, {hi}], got {gamma!r}") from None
     if not (np.isfinite(g) and lo < g <= hi):
         raise ValueError(f"gamma of {name} must lie in ({lo}, {hi}], got {gamma!r}")
     return g

@@ -56,6 +56,10 @@ class ContactProblem:
             raise ValueError("p_bar must hold at least one load")
         if np.any(pb <= 0):
             raise ValueError(f"p_bar must be > 0 (every load), got {pb[pb <= 0].ravel()[0]!r}")
+        if np.any(pb > 1e150):
+            raise ValueError(
+                f"p_bar must be <= 1e150 (p_bar^2 must be representable; rescale units), got {float(pb.max())!r}"
+            )
         self.scalar_load = pb.ndim == 0
         self.p_bar = np.atleast_1d(pb).astype(float)
         self.fudge = _fudge.resolve(fudge)

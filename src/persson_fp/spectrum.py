@@ -179,6 +179,8 @@ class SelfAffinePSD(PSD):
 
     def __init__(self, C0: float, H: float, q_l: float, q_r: float, q_s: float):
         C0 = as_positive_scalar(C0, "C0")
+        if np.ndim(H) != 0:
+            raise ValueError(f"H must be a scalar in [0, 1], got shape {np.shape(H)}")
         H = float(check_in_range(H, "H", 0.0, 1.0, rtol=0.0))
         q_l = as_positive_scalar(q_l, "q_l")
         q_r = as_positive_scalar(q_r, "q_r")
@@ -203,14 +205,22 @@ class SelfAffinePSD(PSD):
         """Spectrum whose rms slope over ``[q_l, q_s]`` is ``rms_slope`` (dimensionless, > 0)."""
         rms_slope = as_positive_scalar(rms_slope, "rms_slope")
         unit = cls(1.0, H, q_l, q_r, q_s)
-        return cls(rms_slope**2 / unit.grad2(), H, q_l, q_r, q_s)
+        with np.errstate(over="ignore"):
+            C0 = np.float64(rms_slope) ** 2 / unit.grad2()
+        if not np.isfinite(C0):
+            raise ValueError(f"rms_slope = {rms_slope!r} puts C0 out of floating-point range; rescale the units")
+        return cls(C0, H, q_l, q_r, q_s)
 
     @classmethod
     def from_rms_height(cls, rms_height: float, H: float, q_l: float, q_r: float, q_s: float):
         """Spectrum whose rms height over ``[q_l, q_s]`` is ``rms_height`` (length, > 0)."""
         rms_height = as_positive_scalar(rms_height, "rms_height")
         unit = cls(1.0, H, q_l, q_r, q_s)
-        return cls(rms_height**2 / unit.h2(), H, q_l, q_r, q_s)
+        with np.errstate(over="ignore"):
+            C0 = np.float64(rms_height) ** 2 / unit.h2()
+        if not np.isfinite(C0):
+            raise ValueError(f"rms_height = {rms_height!r} puts C0 out of floating-point range; rescale the units")
+        return cls(C0, H, q_l, q_r, q_s)
 
     @property
     def zeta_r(self) -> float:
@@ -264,8 +274,10 @@ class TabulatedPSD(PSD):
     """
 
     def __init__(self, q, C, q_l: float | None = None, q_s: float | None = None):
-        q = as_float_array(q, "q").ravel()
-        C = as_float_array(C, "C").ravel()
+        q = as_float_array(q, "q")
+        C = as_float_array(C, "C")
+        if q.ndim != 1 or C.ndim != 1:
+            raise ValueError(f"q and C must be 1-D arrays, got shapes {q.shape} and {C.shape}")
         if q.size < 2:
             raise ValueError(f"q must hold at least 2 points, got {q.size}")
         if C.shape != q.shape:

@@ -173,7 +173,10 @@ class Solver:
         zmax = self.problem.zeta_max
         if zeta_out is None:
             return np.array([zmax])
-        z = np.atleast_1d(as_float_array(zeta_out, "zeta_out")).ravel()
+        z = as_float_array(zeta_out, "zeta_out")
+        if z.ndim > 1:
+            raise ValueError(f"zeta_out must be a scalar or a 1-D array, got shape {z.shape}")
+        z = np.atleast_1d(z)
         if z.size == 0:
             raise ValueError("zeta_out must hold at least one station")
         if np.any(z <= 1.0) or np.any(z > zmax * (1 + 1e-12)):
