@@ -408,11 +408,12 @@ class FiniteVolumeSolver(Solver):
         numerical A*): "graded" (uniform in s = tau + 0.05 tau_max ln tau: geometric while tau is
         small, uniform in tau later), "tau" (uniform in the effective variance), "geometric"
         (uniform in ln V) or "zeta" (uniform in zeta).  Measured on the reference problem with
-        the default 100 steps (L1 at zeta_max / worst over the stations): one station 5.8e-6
-        ("graded") vs 5.6e-6 ("tau"); 24 stations from zeta = 1.5: 8.2e-6 / 7.4e-4 vs 6.7e-6 /
-        2.1e-2 ("tau") and 5.7e-5 / 1.3e-3 ("geometric").  Uniform-in-tau steps are the cheapest
-        for zeta_max alone (early errors are damped by the later diffusion) but starve early
-        stations; the grading keeps the relative step dtau/tau bounded near the start.
+        the default 100 steps, ``benchmarks/fv_stepping.py`` (L1 at zeta_max / worst over the
+        stations): one station 5.8e-6 ("graded") vs 5.6e-6 ("tau"); 24 stations from zeta = 1.5:
+        8.2e-6 / 7.4e-4 vs 6.7e-6 / 2.1e-2 ("tau") and 5.7e-5 / 1.3e-3 ("geometric").
+        Uniform-in-tau steps are the cheapest for zeta_max alone (early errors are damped by the
+        later diffusion) but starve early stations; the grading keeps the relative step dtau/tau
+        bounded near the start.
     space : str, default "compact4"
         "compact4" (4th order in p) or "fv2" (2nd order in p, M = I).
     coupling : str, default "auto"
