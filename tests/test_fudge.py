@@ -96,3 +96,18 @@ def test_xu24_equivalent_S_reproduces_closed_form():
     A_closed = m.area(p_bar, V)
     np.testing.assert_allclose(A_closed, erf(p_bar / np.sqrt(2 * m.g(A_closed) * V)), rtol=1e-14)
     np.testing.assert_allclose(tau_ode, m.g(A_closed) * V, rtol=1e-9)
+
+
+@pytest.mark.parametrize("model", [F.YangPersson(), F.WangMuser(), F.Xu24()])
+def test_effective_variance_table_matches_dense_output(model):
+    """The Hermite table behind u_of_v against the ODE solver's dense output it was built from.
+
+    The table step in s = ln v is ~5e-3; cubic Hermite error h^4/384 max|w''''| is ~1e-12 for these
+    smooth maps, so 1e-11 relative in u has a margin of ~5 and still catches any indexing slip (which
+    would give errors of order h ~ 1e-3)."""
+    ev = pf.EffectiveVariance(model)
+    rng = np.random.default_rng(3)
+    s = rng.uniform(np.log(ev.v0) + 1e-9, np.log(1e16) - 1e-9, 20_000)
+    u_tab = ev.u_of_v(np.exp(s))
+    u_ref = np.exp(ev.w_dense(s))
+    np.testing.assert_allclose(u_tab, u_ref, rtol=1e-11)
