@@ -40,7 +40,18 @@ class ContactProblem:
     ------
     ValueError
         Naming the parameter and its allowed range.
+
+    Notes
+    -----
+    A problem is an immutable value (attributes refuse assignment, ``p_bar`` is read-only; use
+    :meth:`with_loads` for other loads), so V(zeta_max), tau(zeta_max) and ``p_max`` are computed
+    once and cached: every solver asks for them in its set-up.
     """
+
+    def __setattr__(self, name, value):
+        if self.__dict__.get("_frozen", False):
+            raise AttributeError(f"ContactProblem is immutable (attribute {name!r}); use with_loads() or build anew")
+        object.__setattr__(self, name, value)
 
     def __init__(self, psd: PSD, E_star: float = 1.0, p_bar=None, fudge=None):
         if not isinstance(psd, PSD):
@@ -62,7 +73,11 @@ class ContactProblem:
             )
         self.scalar_load = pb.ndim == 0
         self.p_bar = np.atleast_1d(pb).astype(float)
+        self.p_bar.setflags(write=False)
         self.fudge = _fudge.resolve(fudge)
+        self._V_max = float(self.psd.V(None, self.E_star))
+        self._tau_max = None  # (n_loads,), on first use
+        self._frozen = True
 
     # -- construction helpers ---------------------------------------------------
     @classmethod
@@ -93,22 +108,43 @@ class ContactProblem:
 
     def V(self, zeta=None) -> np.ndarray:
         """Complete-contact pressure variance V(zeta) (pressure^2), ``eq:Vp_closed_form``."""
+        if zeta is None:
+            return np.array(self._V_max)
         return self.psd.V(zeta, self.E_star)
+
+    @property
+    def V_max(self) -> float:
+        """V(zeta_max) (pressure^2), cached."""
+        return self._V_max
+
+    @property
+    def tau_max(self) -> np.ndarray:
+        """tau(zeta_max) per load (pressure^2), shape (n_loads,), cached (a read-only array)."""
+        if self._tau_max is None:
+            t = np.asarray(self.tau_of_V(self._V_max), dtype=float).reshape(self.n_loads)
+            t.setflags(write=False)
+            object.__setattr__(self, "_tau_max", t)
+        return self._tau_max
 
     def dV_dzeta(self, zeta=None) -> np.ndarray:
         """dV/dzeta (pressure^2), ``eq:dVdxi``; B2 of the original theory (``eq:B2_xi_1``)."""
         return self.psd.dV_dzeta(zeta, self.E_star)
 
     def tau_of_V(self, V) -> np.ndarray:
-        """Effective variance tau (pressure^2) at complete-contact variance(s) ``V``.
+        """Effective variance tau (pressure^2) at complete-contact variance(s) ``V``, for every load.
 
         Returns shape ``V.shape + (n_loads,)``.  For the original theory tau = V;
         for Xu24 the closed form tau = g(A*) V; otherwise the cached ODE of
         :mod:`persson_fp.effective`.
         """
         V = np.asarray(V, dtype=float)[..., None]
+        return self.tau_of_V_each(np.broadcast_to(V, V.shape[:-1] + (self.n_loads,)))
+
+    def tau_of_V_each(self, V) -> np.ndarray:
+        """tau (pressure^2) at one complete-contact variance per load: ``V`` has shape (..., n_loads)."""
+        V = np.asarray(V, dtype=float)
         if isinstance(self.fudge, _fudge.NoFudge):
-            return np.broadcast_to(V, V.shape[:-1] + (self.n_loads,)).copy()
+            return np.array(V)
         if isinstance(self.fudge, _fudge.Xu24):
             A = self.fudge.area(self.p_bar, V)
             return self.fudge.g(A) * V
@@ -116,6 +152,8 @@ class ContactProblem:
 
     def tau(self, zeta=None) -> np.ndarray:
         """Effective variance tau(zeta) = int S dV (pressure^2), shape ``zeta.shape + (n_loads,)``."""
+        if zeta is None:
+            return self.tau_max.copy()
         return self.tau_of_V(self.V(zeta))
 
     def B2(self, zeta, A) -> np.ndarray:
@@ -128,5 +166,4 @@ class ContactProblem:
         With k = 10 the image solution there is below exp(-50) of its peak.
         """
         k = as_positive_scalar(k, "k")
-        tau = self.tau(self.zeta_max)
-        return float(np.max(self.p_bar + k * np.sqrt(tau)))
+        return float(np.max(self.p_bar + k * np.sqrt(self.tau_max)))

@@ -68,10 +68,25 @@ class PSD:
     ``zeta = q / q_l``) and ``q_s`` (upper cut-off, 1/length) and implement
     :meth:`C` and :meth:`moment`; everything else (heights, slopes, pressure
     variance) is derived here.
+
+    A spectrum is an immutable value (its attributes refuse assignment once built): problems and
+    solvers cache quantities derived from it, such as V(zeta_max).
     """
 
     q_l: float
     q_s: float
+
+    def __setattr__(self, name, value):
+        if self.__dict__.get("_frozen", False):
+            raise AttributeError(f"{type(self).__name__} is immutable (attribute {name!r}); build a new spectrum")
+        object.__setattr__(self, name, value)
+
+    def _freeze(self) -> None:
+        """End of a subclass's ``__init__``: make the instance (and its arrays) read-only."""
+        for value in self.__dict__.values():
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+        self._frozen = True
 
     @property
     def zeta_max(self) -> float:
@@ -196,6 +211,7 @@ class SelfAffinePSD(PSD):
         self.q_l = q_l
         self.q_r = q_r
         self.q_s = q_s
+        self._freeze()
 
     def __repr__(self):
         return f"SelfAffinePSD(C0={self.C0!r}, H={self.H!r}, q_l={self.q_l!r}, q_r={self.q_r!r}, q_s={self.q_s!r})"
@@ -294,10 +310,11 @@ class TabulatedPSD(PSD):
         q_s = float(q[-1]) if q_s is None else float(check_in_range(q_s, "q_s", q[0], q[-1], rtol=0.0))
         if not q_s > q_l:
             raise ValueError(f"q_s must be > q_l = {q_l!r}, got {q_s!r}")
-        self.q = q
-        self.values = C
+        self.q = q.copy()
+        self.values = C.copy()
         self.q_l = q_l
         self.q_s = q_s
+        self._freeze()
 
     def __repr__(self):
         return f"TabulatedPSD(<{self.q.size} points>, q_l={self.q_l!r}, q_s={self.q_s!r})"

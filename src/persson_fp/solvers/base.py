@@ -14,6 +14,7 @@ a misspelt one a ``TypeError``, an out-of-range value a ``ValueError``.
 from __future__ import annotations
 
 import difflib
+import functools
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -133,6 +134,20 @@ class Solver:
         raise NotImplementedError
 
     # -- shared machinery ------------------------------------------------------------------------
+    @functools.cached_property
+    def V_out(self) -> np.ndarray:
+        """V at the output stations (pressure^2), shape (n_zeta_out,), computed once."""
+        V = np.atleast_1d(self.problem.V(self.zeta_out)).astype(float)
+        V.setflags(write=False)
+        return V
+
+    @functools.cached_property
+    def tau_out(self) -> np.ndarray:
+        """Exact tau at the output stations (pressure^2), shape (n_zeta_out, n_loads), computed once."""
+        t = np.asarray(self.problem.tau_of_V(self.V_out), dtype=float)
+        t.setflags(write=False)
+        return t
+
     def validate_start_options(self) -> None:
         """Check the start-up and domain options a cell method shares (present ones only):
         ``tau0_fraction`` in (0, 1], ``k_domain`` in (0, 100], ``zeta0`` in [1, first station],
@@ -157,8 +172,7 @@ class Solver:
 
         Steps per interval are proportional to its V length (at least one).
         """
-        V_out = np.atleast_1d(self.problem.V(self.zeta_out)).astype(float)
-        bounds = np.concatenate(([V_start], V_out))
+        bounds = np.concatenate(([V_start], self.V_out))
         total = bounds[-1] - bounds[0]
         nodes, stations = [V_start], []
         for a, c in zip(bounds[:-1], bounds[1:]):
@@ -206,8 +220,8 @@ class Solver:
         if zeta0 is not None:
             return check_float(zeta0, "zeta0", 1.0, float(self.zeta_out[0]))
         frac = check_float(tau0_fraction, "tau0_fraction", 0.0, 1.0)
-        V_max, V_first = np.asarray(pr.V(np.array([pr.zeta_max, self.zeta_out[0]])), dtype=float)
-        tt = pr.tau_of_V(np.array([V_max, V_first]))  # (2, n_loads)
+        V_max = pr.V_max
+        tt = np.stack([pr.tau_max, self.tau_out[0]])  # (2, n_loads)
         j = int(np.argmax(tt[0]))
         target = min(frac * float(tt[0, j]), 0.5 * float(tt[1, j]))
         if dp is not None:
@@ -228,8 +242,7 @@ class Solver:
         sqrt(tau(first station)) must be >= MIN_SIGMA_CELLS * dp for the smallest-tau load; the
         message names the ``n_p`` that would resolve it (or suggests a later first station).
         """
-        pr = self.problem
-        tau_first = float(np.min(pr.tau_of_V(pr.V(self.zeta_out[0]))))
+        tau_first = float(np.min(self.tau_out[0]))
         need = MIN_SIGMA_CELLS * dp
         if np.sqrt(tau_first) < need:
             grow = need / np.sqrt(tau_first)

@@ -139,7 +139,7 @@ class FiPySolver(Solver):
         edges, dp = self.cell_grid(N)
         p_max = edges[-1]
         z0, V0, P_init, A_init = self.initial_cell_averages(edges)
-        V_st = np.concatenate(([V0], np.atleast_1d(pr.V(self.zeta_out)).astype(float)))
+        V_st = np.concatenate(([V0], self.V_out))
         explicit = o["scheme"] == "explicit"
         n_steps = o["n_steps"]
         if n_steps is None and not explicit:

@@ -278,7 +278,7 @@ class PyPDESolver(Solver):
         edges, dp = self.cell_grid(N)
         p_max = edges[-1]
         z0, V0, P_init, A_init = self.initial_cell_averages(edges)
-        V_st = np.concatenate(([V0], np.atleast_1d(pr.V(self.zeta_out)).astype(float)))
+        V_st = np.concatenate(([V0], self.V_out))
         S_max = float(np.max(pr.fudge.S(np.linspace(0.0, 1.0, 2001))))
         fixed = o["solver"] in _FIXED
         peak = float(np.max(P_init))

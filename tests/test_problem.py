@@ -1,0 +1,44 @@
+"""ContactProblem: an immutable value whose zeta_max quantities are cached (problem.py)."""
+
+import numpy as np
+import pytest
+
+import persson_fp as pf
+
+
+def test_problem_and_spectrum_are_immutable():
+    pr = pf.ContactProblem.reference(fudge="YP08", p_bar_ratio=np.array([0.2, 1.0]))
+    with pytest.raises(AttributeError, match="immutable"):
+        pr.p_bar = np.array([1.0, 2.0])
+    with pytest.raises(AttributeError, match="immutable"):
+        pr.fudge = None
+    with pytest.raises(ValueError):  # read-only array: an in-place edit cannot make the caches stale
+        pr.p_bar[0] = 3.0
+    with pytest.raises(AttributeError, match="immutable"):
+        pr.psd.H = 0.5
+    tab = pf.TabulatedPSD([1.0, 2.0, 4.0], [1.0, 0.5, 0.1])
+    with pytest.raises(ValueError):
+        tab.q[0] = 0.5
+
+
+@pytest.mark.parametrize("fudge", [None, "YP08", "Xu24"])
+def test_cached_zeta_max_quantities_match_fresh_ones(fudge):
+    """V_max, tau_max and p_max against the uncached closed forms (V from the spectrum's moment,
+    tau from tau_of_V at that V): equal to round-off, so caching changes nothing."""
+    pr = pf.ContactProblem.reference(fudge=fudge, p_bar_ratio=np.array([0.01, 0.5, 3.0]))
+    V_fresh = float(pr.psd.V(pr.zeta_max, pr.E_star))
+    assert pr.V_max == pytest.approx(V_fresh, rel=1e-14)
+    assert float(pr.V()) == pr.V_max
+    tau_fresh = pr.tau_of_V(np.array([V_fresh]))[0]
+    np.testing.assert_allclose(pr.tau_max, tau_fresh, rtol=1e-14)
+    np.testing.assert_allclose(pr.tau(), tau_fresh, rtol=1e-14)
+    assert pr.p_max(8.0) == pytest.approx(float(np.max(pr.p_bar + 8.0 * np.sqrt(tau_fresh))), rel=1e-14)
+
+
+def test_tau_of_V_each_is_the_diagonal_of_tau_of_V():
+    pr = pf.ContactProblem.reference(fudge="WM17", p_bar_ratio=np.array([0.1, 0.5, 2.0]))
+    V = pr.V_max * np.array([[0.1, 0.5, 0.9], [0.2, 0.3, 1.0]])  # one V per load, two rows
+    each = pr.tau_of_V_each(V)
+    for i in range(2):
+        for j in range(3):
+            assert each[i, j] == pytest.approx(pr.tau_of_V(V[i, j])[j], rel=1e-14)
