@@ -219,3 +219,18 @@ def test_invariants_property(H, zr, zmax, ratio, fudge):
 def test_more_bad_input_names_the_parameter(make, match):
     with pytest.raises(ValueError, match=match):
         make(pf.ContactProblem.reference())
+
+
+def test_tail_mass_is_the_complement_of_the_cdf():
+    """tail_mass(p) = A* - cdf_contact(p) (two closed forms), and it matches a quadrature of the pdf."""
+    from persson_fp.exact import tail_mass
+
+    pr = pf.ContactProblem.reference(p_bar_ratio=np.array([0.1, 0.5, 2.0]))
+    ex = pf.exact(pr, 40.0)
+    tau = np.asarray(ex.tau)
+    for p in (0.01, 0.05, 0.2):
+        got = tail_mass(p, pr.p_bar, tau)
+        np.testing.assert_allclose(got, ex.contact_area - ex.cdf_contact(p), rtol=1e-12, atol=1e-16)
+        for j in range(3):
+            ref = quad(lambda x: float(ex.pdf(x)[j]), p, np.inf, epsabs=1e-15, epsrel=1e-12)[0]
+            assert got[j] == pytest.approx(ref, rel=1e-8, abs=1e-15)

@@ -32,6 +32,7 @@ __all__ = [
     "image_pdf",
     "area_from_tau",
     "variance_closed_form",
+    "tail_mass",
     "pressure_spectrum",
     "elastic_energy",
 ]
@@ -60,6 +61,17 @@ def area_from_tau(p_bar, tau) -> np.ndarray:
     p_bar, tau = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(tau, dtype=float))
     x = np.divide(p_bar, np.sqrt(2.0 * tau), out=np.full(p_bar.shape, np.inf), where=tau > 0)
     return erf(x)
+
+
+def tail_mass(p, p_bar, tau) -> np.ndarray:
+    r"""Mass of the image solution beyond p: :math:`\int_p^\infty P_0\,dp' =
+    \tfrac12[\mathrm{erfc}((p-\bar p)/s) - \mathrm{erfc}((p+\bar p)/s)]`, :math:`s = \sqrt{2\tau}`.
+
+    What a domain cut at p = p_max loses (dimensionless); arguments broadcast, ``tau`` > 0 (pressure^2).
+    """
+    p, p_bar, tau = (np.asarray(x, dtype=float) for x in (p, p_bar, tau))
+    s = np.sqrt(2.0 * tau)
+    return 0.5 * (erfc((p - p_bar) / s) - erfc((p + p_bar) / s))
 
 
 def _check_problem(problem):
