@@ -119,7 +119,10 @@ def sweeps(problem, quick: bool) -> dict:
         ),
         "fipy crank-nicolson": (
             "fipy",
-            [dict(scheme="crank-nicolson", n_p=n, n_steps=s) for n, s in ((50, 15), (100, 30), (200, 60), (400, 120))],
+            [
+                dict(scheme="crank-nicolson", n_p=n, n_steps=s)
+                for n, s in ((50, 15), (100, 30), (200, 60), (400, 120), (800, 240), (1600, 480))
+            ],
         ),
         "fipy implicit": ("fipy", [dict(scheme="implicit", n_p=n, n_steps=s) for n, s in ((50, 20), (100, 80))]),
         "chapman-kolmogorov": (
@@ -130,7 +133,7 @@ def sweeps(problem, quick: bool) -> dict:
     }
 
 
-BUDGET_S = {"py-pde": 75.0, "fipy": 30.0}
+BUDGET_S = {"py-pde": 75.0, "fipy": 60.0}
 """Wall-clock budget (s) of a generic tool per fudge factor (all its sweeps together); once spent, the
 remaining (finer) points are skipped and listed as such in the CSV."""
 
