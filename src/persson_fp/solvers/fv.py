@@ -78,8 +78,8 @@ found at once, as the fixed point of a causal map solved by 3-8 Newton sweeps ov
 (``FiniteVolumeSolver._fudge_trajectory``: each sweep one cumulative product over steps x modes, the
 Jacobian approximated by the wall outflux), then the run is the closed form above with per-load steps;
 batches too large for that (``_TRAJECTORY_SIZE``), runs with fewer than 16 steps and ``"picard"``
-march step by step.  Either way it is the banded path's discrete solution to ~1e-13.  The wall fluxes are functionals too,
-accumulated with the scheme's stage weights (per-mode weight F(x)), so ``contact_area_flux`` and
+march step by step.  Either way it is the banded path's discrete solution to ~1e-13.  The wall fluxes
+are functionals too, accumulated with the scheme's stage weights (per-mode weight F(x)), so ``contact_area_flux`` and
 ``far_wall_mass`` are the banded path's to round-off.  The stability checks run on coefficients:
 non-finite values, negative or growing A*, and growth of :math:`\|P\|_2 = \|c\|_2` (which
 :math:`|R_j| \le 1` makes non-increasing) instead of max |P|; an explicit step past its limit
@@ -583,7 +583,6 @@ class FiniteVolumeSolver(Solver):
         self.edges, self.dp = self.cell_grid(N)
         dp, p_max = self.dp, self.edges[-1]
         p = 0.5 * (self.edges[1:] + self.edges[:-1])
-        m = pr.n_loads
 
         linalg = "banded" if o["linalg"] == "banded" else "dst"  # dst is exact for every option here
         self.zeta0, V0, P, A0 = self._start()
