@@ -274,7 +274,7 @@ class Solver:
         F = np.asarray(ex.cdf_contact(edges)).reshape(pr.n_loads, -1)
         P = np.ascontiguousarray(np.diff(F, axis=-1) / dp)
         A = np.asarray(ex.contact_area, dtype=float).reshape(pr.n_loads)
-        return z0, float(pr.V(z0)), P, A
+        return z0, float(np.ravel(ex.V)[0]), P, A
 
     def exact_at(self, zeta):
         """The exact solution of the problem at ``zeta`` (for start-up data and references)."""
