@@ -137,14 +137,22 @@ class Solver:
     @functools.cached_property
     def V_out(self) -> np.ndarray:
         """V at the output stations (pressure^2), shape (n_zeta_out,), computed once."""
-        V = np.atleast_1d(self.problem.V(self.zeta_out)).astype(float)
+        pr = self.problem
+        if self.zeta_out.size == 1 and self.zeta_out[0] == pr.zeta_max:
+            V = np.array([pr.V_max])  # the cached value (the default station)
+        else:
+            V = np.atleast_1d(pr.V(self.zeta_out)).astype(float)
         V.setflags(write=False)
         return V
 
     @functools.cached_property
     def tau_out(self) -> np.ndarray:
         """Exact tau at the output stations (pressure^2), shape (n_zeta_out, n_loads), computed once."""
-        t = np.asarray(self.problem.tau_of_V(self.V_out), dtype=float)
+        pr = self.problem
+        if self.zeta_out.size == 1 and self.zeta_out[0] == pr.zeta_max:
+            t = pr.tau_max[None, :].copy()
+        else:
+            t = np.asarray(pr.tau_of_V(self.V_out), dtype=float)
         t.setflags(write=False)
         return t
 
