@@ -2,9 +2,11 @@
 
 import numpy as np
 import pytest
+from scipy.integrate import solve_ivp
 
 import persson_fp as pf
-from persson_fp.solvers.sines import SineSeriesSolver, modes_needed, series_area, series_pdf
+from persson_fp.solvers import sines
+from persson_fp.solvers.sines import SineSeriesSolver, image_area, modes_needed, series_area, series_pdf
 
 ZETA_OUT = [1.5, 10.0, 128.0]
 
@@ -113,9 +115,106 @@ def test_tiny_loads_with_fudge_need_few_modes(fudge):
 
 def test_image_dual_equals_the_converged_series():
     """Poisson summation: the image sum and the (converged) sine series are the same function."""
-    from persson_fp.solvers.sines import image_area
-
     L, pb = 1.0, 0.3
     for tau in (1e-3, 1e-2, 0.05):
         n = int(modes_needed(L, tau, 1e-15))
         assert image_area(L, pb, tau) == pytest.approx(float(series_area(L, pb, tau, n)), abs=1e-14)
+
+
+# -- the tau map with a fudge factor against an independent reference ------------------------------------------
+
+
+def _tau_reference(fudge, L, N, tol, p_bar, V_out):
+    """tau(V_out) of dtau/dV = S(A_h(tau)) by DOP853, A_h = series_area (N modes) for tau >= tau_N, image_area below.
+
+    Started at tau_sw = p_bar^2/72, V_sw = tau_sw / S(1) (tau = S(1) V before); the jump of A_h at tau_N (up to
+    tol) is an event, where the integration restarts.
+    """
+    tau_N = 2.0 * (np.log(2.0 / tol) + np.log(4.0)) * (L / (np.pi * (N + 1))) ** 2  # modes_needed's bound
+    S1 = float(fudge.S(np.array(1.0)))
+    tau_sw = p_bar**2 / 72.0
+    V_sw = tau_sw / S1
+    out = S1 * np.asarray(V_out, dtype=float)
+    todo = V_out > V_sw
+
+    def rhs(area):
+        return lambda V, y: [float(fudge.S(np.array(min(max(float(area(y[0])), 0.0), 1.0))))]
+
+    opts = {"method": "DOP853", "rtol": 1e-13, "atol": 1e-300, "dense_output": True}
+    V0, t0 = V_sw, tau_sw
+    if t0 < tau_N:
+
+        def reach_tau_N(V, y):
+            return y[0] - tau_N
+
+        reach_tau_N.terminal = True
+        sol = solve_ivp(rhs(lambda t: image_area(L, p_bar, t)), (V0, V_out[-1]), [t0], events=reach_tau_N, **opts)
+        now = todo & (V_out <= sol.t[-1])
+        if now.any():
+            out[now] = sol.sol(V_out[now])[0]
+        todo &= V_out > sol.t[-1]
+        V0, t0 = sol.t[-1], sol.y[0, -1]
+    if todo.any():
+        sol = solve_ivp(rhs(lambda t: series_area(L, p_bar, t, N)), (V0, V_out[-1]), [t0], **opts)
+        out[todo] = sol.sol(V_out[todo])[0]
+    return out
+
+
+def _cubic(A):
+    return 0.3 + 0.7 * A**3
+
+
+@pytest.mark.filterwarnings("ignore:sines. P0 has negative values:RuntimeWarning")  # n_p=12: Gibbs
+@pytest.mark.parametrize("fudge", ["YP08", "WM17", "Xu24", _cubic])
+@pytest.mark.parametrize(
+    "opts",
+    [{}, {"n_p": 12}, {"tol": 1e-6}, {"k_domain": 6.0}],
+    ids=["default", "n_p=12", "tol=1e-6 (dropped-mode correction)", "k_domain=6 (far wall: direct rule)"],
+)
+def test_tau_map_against_ode_reference(fudge, opts):
+    """tau solves the series' own dtau/dV = S(A_h) for tiny to big loads and early to late stations.
+
+    Tolerance 2e-13: the map is converged to rtol = 1e-14 (its quadratures are at round-off), while DOP853 at
+    rtol = 1e-13 keeps each step's local error below 1e-13 tau, and over its few hundred steps (across 8 decades
+    of V for the 1e-4 load) the global error stays of that order (observed <= 4e-14).
+    """
+    pr = pf.ContactProblem.reference(fudge=fudge, p_bar_ratio=[1e-4, 0.05, 0.5, 3.0])
+    z = np.array([1.05, 1.5, 10.0, 128.0])  # 1.05: V below V_sw of the big load (tau = S(1) V)
+    sol = pf.solve(pr, "sines", zeta_out=z, **opts)
+    info = sol.info
+    V = np.atleast_1d(pr.V(z)).astype(float)
+    for j, pb in enumerate(pr.p_bar):
+        ref = _tau_reference(pr.fudge, info["p_max"], info["n_modes"], opts.get("tol", 1e-13), pb, V)
+        np.testing.assert_allclose(info["tau"][:, j], ref, rtol=2e-13, atol=0)
+    assert info["tau_map_residual"] <= 1e-14
+    assert 1 <= info["tau_map_iterations"] <= 3
+    assert info["tau_map_direct"] == ("k_domain" in opts)
+
+
+@pytest.mark.parametrize("scale", [1.3, 0.8, np.nan])
+def test_tau_map_guess_is_only_a_guess(monkeypatch, scale):
+    """A poor (or NaN) continuum guess costs Newton steps, not accuracy."""
+    pr = pf.ContactProblem.reference(fudge="WM17", p_bar_ratio=[1e-3, 0.5, 3.0])
+    good = pf.solve(pr, "sines", zeta_out=ZETA_OUT)
+    tau_map = SineSeriesSolver._tau_map
+    monkeypatch.setattr(SineSeriesSolver, "_tau_map", lambda self, *a: tau_map(self, *a[:-1], scale * a[-1]))
+    bad = pf.solve(pr, "sines", zeta_out=ZETA_OUT)
+    assert bad.info["tau_map_iterations"] > good.info["tau_map_iterations"]
+    np.testing.assert_allclose(bad.info["tau"], good.info["tau"], rtol=1e-14)
+    assert bad.info["tau_map_residual"] <= 1e-14
+
+
+def test_tau_map_reports_non_convergence(monkeypatch):
+    monkeypatch.setattr(sines, "_MAX_NEWTON", 1)
+    pr = pf.ContactProblem.reference(fudge="YP08", p_bar_ratio=0.3)
+    with pytest.raises(RuntimeError, match="did not converge in 1 Newton steps"):
+        pf.solve(pr, "sines", tol=1e-2)  # the loose truncation makes the first step's bound exceed rtol
+
+
+def test_tau_map_is_cheap():
+    """By default one evaluation of the load-free table (its partial-panel rule and both ends per station and
+    load) and one Newton step: the dropped-mode correction is below rtol / 10 and left out."""
+    pr = pf.ContactProblem.reference(fudge="YP08", p_bar_ratio=np.geomspace(0.01, 3.0, 7))
+    sol = pf.solve(pr, "sines", zeta_out=ZETA_OUT)
+    assert sol.info["tau_map_iterations"] == 1
+    assert sol.info["tau_map_nodes"] == (sines._TABLE_Q + 2) * len(ZETA_OUT) * 7
