@@ -89,9 +89,10 @@ tridiagonal solves below as the readable reference (the two agree to ~1e-14 of m
 stop being exact with a wall that is not odd (a reflecting far wall, another basis) or a
 non-uniform grid in p.  Coefficients below 1e-200 of :math:`\|P_0\|_2` are set to zero (the top
 modes would otherwise decay into subnormal numbers, ~100x slower arithmetic).  Measured
-(``benchmarks/fv_timing.py``): 2-9x faster than the banded path for one load, where the set-up
-(start-up data, nodes, ~1 ms without and ~3 ms with a fudge factor) is now a large part of the
-time, and 2.6x for 1000 loads with YP08 (the tau(V) node table is then most of the time).
+(``benchmarks/fv_timing.py``): 1.6-14x faster than the banded path for one load without a fudge
+factor and 3-7x with YP08 (the trajectory sweeps), where the set-up (start-up data and nodes, ~1 ms)
+is a large part of the time, and 3.1-3.4x for 1000 loads with YP08 (step by step, vectorised over the
+loads).
 
 *Stepping* (measured on the reference problem, ``benchmarks/fv_timing.py``): nodes uniform in the
 effective variance ("tau") beat geometric and uniform-in-zeta nodes by 3-4x in error at equal
