@@ -42,3 +42,14 @@ def test_tau_of_V_each_is_the_diagonal_of_tau_of_V():
     for i in range(2):
         for j in range(3):
             assert each[i, j] == pytest.approx(pr.tau_of_V(V[i, j])[j], rel=1e-14)
+
+
+@pytest.mark.parametrize("fudge", ["YP08", "WM17", "Xu24", None])
+def test_V_of_tau_inverts_tau_of_V(fudge):
+    """Round trip V -> tau -> V over 12 decades of V / p_bar^2 (both table branches, the linear ends):
+    the Hermite tables of w(s) and s(w) are each ~1e-12 accurate, so 1e-10 relative leaves a margin."""
+    pr = pf.ContactProblem.reference(fudge=fudge, p_bar_ratio=np.array([1e-4, 0.05, 0.5, 3.0]))
+    V = pr.V_max * np.geomspace(1e-8, 1.0, 60)[:, None] * np.ones(pr.n_loads)
+    tau = pr.tau_of_V_each(V)
+    np.testing.assert_allclose(pr.V_of_tau_each(tau), V, rtol=1e-10)
+    assert np.all(pr.V_of_tau_each(np.zeros(pr.n_loads)) == 0.0)

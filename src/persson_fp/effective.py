@@ -73,7 +73,10 @@ class EffectiveVariance:
         self.nfev = sol.nfev
         s_tab = np.linspace(s0, s1, _TABLE)
         w_tab = sol.sol(s_tab)[0]
-        self._w_of_s = CubicHermiteSpline(s_tab, w_tab, rhs(s_tab, w_tab))  # slopes from the ODE itself
+        dw_ds = rhs(s_tab, w_tab)
+        self._w_of_s = CubicHermiteSpline(s_tab, w_tab, dw_ds)  # slopes from the ODE itself
+        self._s_of_w = CubicHermiteSpline(w_tab, s_tab, 1.0 / dw_ds)  # its inverse (dw/ds = S v/u > 0)
+        self._w_lo, self._w_hi = float(w_tab[0]), float(w_tab[-1])
         w_end = sol.y[0, -1]
         self.u_end = float(np.exp(w_end))
         self.slope_end = float(fudge.S(erf(np.exp(-0.5 * w_end) / np.sqrt(2.0))))
@@ -88,6 +91,16 @@ class EffectiveVariance:
         u = np.exp(self._w_of_s(s))
         u = np.where(v <= self.v0, self.S1 * v, u)
         return np.where(v > _V_MAX, self.u_end + self.slope_end * (v - _V_MAX), u)
+
+    def v_of_u(self, u) -> np.ndarray:
+        """The inverse map: scaled variance v at scaled effective variance u (u >= 0), same table."""
+        u = np.asarray(u, dtype=float)
+        if self.identity:
+            return u.copy()
+        w = np.log(np.minimum(np.maximum(u, _U0), self.u_end))
+        v = np.exp(self._s_of_w(np.minimum(np.maximum(w, self._w_lo), self._w_hi)))
+        v = np.where(u <= _U0, u / self.S1, v)
+        return np.where(u > self.u_end, _V_MAX + (u - self.u_end) / self.slope_end, v)
 
     def w_dense(self, s) -> np.ndarray:
         """ln u at s = ln v from the ODE solver's own dense output (the reference of the table)."""
@@ -108,6 +121,21 @@ class EffectiveVariance:
             near = p2 * self.u_of_v(np.minimum(v, _V_MAX))
         far = self.slope_end * V + p2 * (self.u_end - self.slope_end * _V_MAX)
         return np.where(v <= _V_MAX, near, far)
+
+    def V_of_tau(self, p_bar, tau) -> np.ndarray:
+        """The complete-contact variance V at which the effective variance reaches ``tau`` (inverse of
+        :meth:`tau`), broadcast over both (pressure^2)."""
+        p_bar = np.asarray(p_bar, dtype=float)
+        tau = np.asarray(tau, dtype=float)
+        if self.identity:
+            return np.array(np.broadcast_to(tau, np.broadcast_shapes(p_bar.shape, tau.shape)))
+        p2 = p_bar * p_bar
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            u = tau / p2
+            u = np.where(u <= self.u_end, u, np.inf)
+            near = p2 * self.v_of_u(np.minimum(u, self.u_end))
+        far = _V_MAX * p2 + (tau - self.u_end * p2) / self.slope_end
+        return np.where(u <= self.u_end, near, far)
 
 
 _CACHE: dict = {}

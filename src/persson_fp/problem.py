@@ -9,6 +9,7 @@ of the fudge-factor theory, and how large a pressure domain must be.
 from __future__ import annotations
 
 import numpy as np
+from scipy.special import erf
 
 from . import fudge as _fudge
 from ._validate import as_float_array, as_positive_scalar
@@ -149,6 +150,19 @@ class ContactProblem:
             A = self.fudge.area(self.p_bar, V)
             return self.fudge.g(A) * V
         return effective_variance(self.fudge).tau(self.p_bar, V)
+
+    def V_of_tau_each(self, tau) -> np.ndarray:
+        """The inverse of :meth:`tau_of_V_each`: V (pressure^2) at one effective variance per load,
+        ``tau`` of shape (..., n_loads).  Xu24 in closed form, V = tau / g(A*) with A* = erf(p_bar / sqrt(2 tau));
+        the ODE models through the inverse of the same table."""
+        tau = np.asarray(tau, dtype=float)
+        if isinstance(self.fudge, _fudge.NoFudge):
+            return np.array(tau)
+        if isinstance(self.fudge, _fudge.Xu24):
+            with np.errstate(divide="ignore"):
+                A = erf(np.divide(self.p_bar, np.sqrt(2.0 * tau), out=np.full(tau.shape, np.inf), where=tau > 0))
+            return tau / self.fudge.g(A)
+        return effective_variance(self.fudge).V_of_tau(self.p_bar, tau)
 
     def tau(self, zeta=None) -> np.ndarray:
         """Effective variance tau(zeta) = int S dV (pressure^2), shape ``zeta.shape + (n_loads,)``."""
