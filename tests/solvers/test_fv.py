@@ -14,6 +14,7 @@ from persson_fp.solvers.fv import (
     SPACES,
     FiniteVolumeSolver,
     _amplification,
+    _growth,
     apply_mass,
     apply_operator,
     banded_operator,
@@ -357,3 +358,21 @@ def test_tr_bdf2_from_a_delta_does_not_ring(problems, linalg):
     peak = np.max(damped.exact_on_grid()[0, 0])
     assert -damped.P0_all[0, 0].min() <= 1e-12 * peak
     assert -raw.P0_all[0, 0].min() > 0.3 * peak
+
+
+@pytest.mark.parametrize(("kind", "theta"), [("tr-bdf2", 0.5), ("be-halves", 1.0), ("theta", 0.0), ("theta", 0.5)])
+def test_growth_is_the_amplification_factor(kind, theta):
+    """The R-only factor of the trajectory sweeps against _amplification's R (same formula written once
+    more, without the wall-flux weight): equal to round-off over x = dtau lambda in [-1e4, 0]."""
+    x = -np.geomspace(1e-6, 1e4, 200)
+    R, _ = _amplification(kind, theta, x.copy())
+    np.testing.assert_allclose(_growth(kind, theta, x), R, rtol=1e-13, atol=1e-16)
+
+
+@pytest.mark.parametrize("coupling", ["lagged", "predictor"])
+def test_fudge_trajectory_is_used_and_converges(problems, coupling):
+    """The whole-trajectory coupling (>= 16 steps, one load) converges in a few sweeps and gives the
+    step-by-step march's result (the banded path) to 1e-12 of max P0."""
+    a, b = both(problems["YP08"], coupling=coupling, n_p=100, n_steps=40, zeta_out=[3.0, 128.0])
+    assert 2 <= b.info["trajectory_sweeps"] <= 10 and a.info["trajectory_sweeps"] == 0
+    assert_same(a, b)

@@ -20,11 +20,9 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.special import erf
 
 from .._validate import as_float_array
 from ..exact import exact
-from ..fudge import NoFudge
 from ..problem import ContactProblem
 from ..solution import InstabilityError, Solution
 
@@ -222,7 +220,7 @@ class Solver:
         for the load with the largest tau -- but at most half of that load's tau at the first output
         station, so that the start always lies before it, and, on a grid of spacing ``dp``, not below
         tau = 2 dp^2 where that station allows it (an unresolved start would spoil every later station).
-        tau(V) is inverted by a table and one Newton step with dtau/dV = S(A*) (to ~1e-12).
+        tau(V) is inverted by :meth:`~persson_fp.ContactProblem.V_of_tau_each` (to ~1e-12).
         """
         pr = self.problem
         if zeta0 is not None:
@@ -234,15 +232,8 @@ class Solver:
         target = min(frac * float(tt[0, j]), 0.5 * float(tt[1, j]))
         if dp is not None:
             target = max(target, min(2.0 * dp**2, 0.5 * float(tt[1, j])))
-        if isinstance(pr.fudge, NoFudge):
-            V0 = target  # tau = V
-        else:  # tau(V) is increasing
-            Vt = np.linspace(0.0, V_max, 257)
-            V0 = float(np.interp(target, pr.tau_of_V(Vt)[:, j], Vt))
-            t0 = float(pr.tau_of_V(V0)[j])
-            slope = float(pr.fudge.S(erf(pr.p_bar[j] / np.sqrt(2.0 * t0))))
-            V0 = min(max(V0 - (t0 - target) / slope, 0.0), V_max)
-        return float(self.zeta_from_V(V0)[0])
+        V0 = float(pr.V_of_tau_each(np.full(pr.n_loads, target))[j])  # the exact inverse (tau = V without S)
+        return float(self.zeta_from_V(min(max(V0, 0.0), V_max))[0])
 
     def check_resolved(self, dp: float, what: str = "n_p") -> None:
         """Raise ``ValueError`` unless the first output station is resolved on a grid of spacing ``dp``.

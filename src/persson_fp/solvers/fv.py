@@ -182,10 +182,6 @@ _TRAJECTORY_MIN_STEPS = 16
 _TRAJECTORY_SWEEPS = 30
 _TRAJECTORY_TOL = 1e-14
 """Converged when every step's residual is below this fraction of the load's largest step."""
-_TAU_TABLE = 2049
-"""Points of the tau(V) table that places the "tau" nodes under a fudge factor (linear interpolation).
-257 would be 10x cheaper for 1000 loads (the table is most of the 1000-load batch's set-up) but moves
-the small predictor |dA*| of the committed stability atlas by ~1e-3 of itself."""
 
 
 # -- the readable operator and the fast one ------------------------------------------------------
@@ -412,6 +408,18 @@ def _amplification(kind: str, theta: float, x, work=None):
     return R, F
 
 
+def _growth(kind: str, theta: float, x):
+    """The amplification factor R of :func:`_amplification` alone (no wall-flux weight): the trajectory
+    sweeps of the fudge coupling need only R."""
+    if kind == "tr-bdf2":
+        T = 1.0 / (1.0 - _BDF2_W * x)
+        return (1.0 + ((_BDF2_A + _BDF2_B) * _BDF2_W) * x) * (T * T)
+    if kind == "be-halves":
+        T = 1.0 / (1.0 - 0.5 * x)
+        return T * T
+    return (1.0 + (1.0 - theta) * x) / (1.0 - theta * x)
+
+
 class FiniteVolumeSolver(Solver):
     r"""Cell-centred finite volumes with θ-schemes / TR-BDF2 (see the module docstring).
 
@@ -558,19 +566,18 @@ class FiniteVolumeSolver(Solver):
         return np.concatenate(pieces, axis=0), np.cumsum(counts)
 
     def _uniform_tau_nodes(self, Va, Vb, t):
-        """V nodes at uniform closed-form tau between Va and Vb, per load, shape (len(t), n_loads)."""
+        """V nodes at the tau fractions ``t`` between tau(Va) and tau(Vb), per load, shape (len(t), n_loads).
+
+        The closed-form tau of each load, inverted exactly (:meth:`~persson_fp.ContactProblem.V_of_tau_each`).
+        """
         pr = self.problem
         if Vb <= Va:
             return np.full((t.size, pr.n_loads), Vb)
         if isinstance(pr.fudge, NoFudge):
             return (Va + t * (Vb - Va))[:, None] * np.ones(pr.n_loads)
-        Vt = np.linspace(Va, Vb, _TAU_TABLE)
-        tt = pr.tau_of_V(Vt)  # (_TAU_TABLE, n_loads), increasing in V
-        target = tt[0] + t[:, None] * (tt[-1] - tt[0])
-        out = np.empty((t.size, pr.n_loads))
-        for j in range(pr.n_loads):  # ~30 us a load: 1000 loads cost less than tau_of_V above
-            out[:, j] = np.interp(target[:, j], tt[:, j], Vt)
-        return out
+        ta, tb = pr.tau_of_V(np.array([Va, Vb]))  # (n_loads,) each
+        V = pr.V_of_tau_each(ta + t[:, None] * (tb - ta))
+        return np.minimum(np.maximum(V, Va), Vb)  # (round-off of the inverse table kept inside the segment)
 
     # -- the run ---------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
@@ -845,15 +852,26 @@ class FiniteVolumeSolver(Solver):
         keep = np.any(np.abs(W) > 1e-18 * big, axis=(0, 1))
         W = np.ascontiguousarray(W[:, :, keep])
         lam = sp.lam[keep]
+        mass0, b0 = W[0].sum(axis=-1), W[1].sum(axis=-1)  # at the start (node 0)
+        WT = np.ascontiguousarray(W[:, 0, :].T) if m == 1 else None  # one load: a matmul, not an einsum
+        r0 = min(self._damped_steps(), dts.shape[0])
+        kind = self._step_kind(dts.shape[0])
+        chord = None  # the correction's recurrence, set up once (a chord method: the Jacobian is approximate anyway)
         with np.errstate(over="ignore", invalid="ignore", under="ignore"):
             for sweep in range(1, _TRAJECTORY_SWEEPS + 1):
-                R, _ = self._amplify_all(dts[:, :, None] * lam, theta)
-                G = np.cumprod(R[:-1], axis=0)  # amplification up to the start of steps 1..n-1
-                Q = np.einsum("cjn,kjn->ckj", W, G)  # (2, n_steps - 1, m)
-                mass = np.concatenate([(W[0].sum(axis=-1))[None], Q[0]])
-                b = np.concatenate([(W[1].sum(axis=-1))[None], Q[1]])
-                if not (np.all(np.isfinite(mass)) and np.all(np.isfinite(b))):
+                X = dts[:-1, :, None] * lam  # the last step's factor is not needed here
+                R = _growth(kind, theta, X)
+                if r0 > 0:
+                    R[:r0] = _growth("be-halves", theta, X[:r0])
+                G = np.cumprod(R, axis=0)  # amplification up to the start of steps 1..n-1
+                if WT is not None:
+                    Q = (G[:, 0, :] @ WT).T[:, :, None]  # (2, n_steps - 1, 1)
+                else:
+                    Q = np.einsum("cjn,kjn->ckj", W, G)  # (2, n_steps - 1, m)
+                if not np.all(np.isfinite(Q)):
                     return None, sweep
+                mass = np.concatenate([mass0[None], Q[0]])
+                b = np.concatenate([b0[None], Q[1]])
                 Sn = S(mass)
                 if coupling == "lagged":
                     new = Sn * dV
@@ -863,13 +881,14 @@ class FiniteVolumeSolver(Solver):
                 res = new - dts
                 if np.all(np.abs(res) <= _TRAJECTORY_TOL * np.max(dts, axis=0)):
                     return new, sweep
-                # Newton correction with the approximate Jacobian (docstring): c_n = dPhi/dA * b_n
-                A_c = np.minimum(np.maximum(mass, 1e-6), 1.0 - 1e-6)
-                dS = (S(A_c + 1e-6) - S(A_c - 1e-6)) / 2e-6
-                c = dV * dS * b
-                alpha = 1.0 - c
-                if np.all((alpha > 0.25) & (alpha < 4.0)):  # D_{n+1} = alpha_n D_n + r_n in closed form
-                    P = np.cumprod(alpha, axis=0)
+                if chord is None:  # c_n = dPhi/dA * b_n (docstring), from the first sweep's trajectory
+                    A_c = np.minimum(np.maximum(mass, 1e-6), 1.0 - 1e-6)
+                    c = dV * (S(A_c + 1e-6) - S(A_c - 1e-6)) / 2e-6 * b
+                    alpha = 1.0 - c
+                    P = np.cumprod(alpha, axis=0) if np.all((alpha > 0.25) & (alpha < 4.0)) else None
+                    chord = (c, alpha, P)
+                c, alpha, P = chord
+                if P is not None:  # D_{n+1} = alpha_n D_n + r_n in closed form
                     D = np.concatenate([np.zeros((1, m)), P[:-1] * np.cumsum(res / P, axis=0)[:-1]])
                 else:
                     D = np.zeros_like(res)
