@@ -101,3 +101,19 @@ def test_fv_stepping_quick(tmp_path):
     final = {(r["stations"], r["stepping"]): r["L1_final"] for r in rows}
     assert worst["24", "graded"] < worst["24", "tau"] / 10
     assert final["1", "graded"] < 1e-5 and final["1", "graded"] < 1.1 * final["1", "tau"]
+
+
+def test_contact_area_curve_quick(tmp_path):
+    summary = _module("contact_area_curve").main(["--quick", "--output", str(tmp_path)])
+    rows = _rows(tmp_path / "contact_area_curve.csv")
+    assert len(rows) == 100 and {"A_none", "A_YP08", "A_WM17", "A_Xu24"} <= set(rows[0])
+    _png(tmp_path / "contact_area_curve.png")
+    assert len(_rows(tmp_path / "contact_area_throughput.csv")) == len(summary)
+    for model in ("none", "YP08", "WM17", "Xu24"):
+        exact = [r for r in summary if r["model"] == model and r["method"] == "exact"]
+        assert exact and exact[0]["max_rel_error_vs_direct_ode"] < 1e-10 and exact[0]["loads_per_s"] > 0
+        pde = [r for r in summary if r["model"] == model and r["method"] != "exact"]
+        assert {"sines", "fv"} <= {r["method"] for r in pde}
+        # the sine series (modes for 1e-13) reaches the 1e-6 on every load, and one method is marked
+        assert next(r for r in pde if r["method"] == "sines")["max_abs_area_error"] < 1e-6
+        assert sum(bool(r["fastest_reaching_1e-06"]) for r in pde) == 1
