@@ -53,3 +53,35 @@ def test_V_of_tau_inverts_tau_of_V(fudge):
     tau = pr.tau_of_V_each(V)
     np.testing.assert_allclose(pr.V_of_tau_each(tau), V, rtol=1e-10)
     assert np.all(pr.V_of_tau_each(np.zeros(pr.n_loads)) == 0.0)
+
+
+@pytest.mark.parametrize("fudge", ["YP08", "WM17"])
+def test_huge_loads_small_V_do_not_underflow(fudge):
+    """p_bar = 5e148 (allowed) and V / p_bar^2 below the smallest double: A* = 1, so tau = S(1) V exactly
+    (found by the review: V / p_bar^2 underflowed to 0 and tau came back 0)."""
+    pr = pf.ContactProblem.reference(fudge=fudge, p_bar_ratio=1e150)
+    V = pr.V_max * np.array([1e-30, 1e-25, 1e-20])
+    S1 = float(pr.fudge.S(np.array(1.0)))
+    np.testing.assert_allclose(pr.tau_of_V(V)[:, 0], S1 * V, rtol=1e-14)
+    np.testing.assert_allclose(pr.V_of_tau_each(S1 * V[:, None])[:, 0], V, rtol=1e-14)
+
+
+def test_immutability_survives_pickle_and_deepcopy():
+    import copy
+    import pickle
+
+    pr = pf.ContactProblem.reference(fudge="YP08", p_bar_ratio=np.array([0.2, 1.0]))
+    tau = pr.tau_max.copy()
+    for clone in (pickle.loads(pickle.dumps(pr)), copy.deepcopy(pr)):
+        np.testing.assert_array_equal(clone.tau_max, tau)
+        with pytest.raises(ValueError):
+            clone.p_bar[0] = 1e-3
+        with pytest.raises(ValueError):
+            clone.tau_max[0] = 1.0
+        with pytest.raises(AttributeError, match="immutable"):
+            del clone.p_bar
+        with pytest.raises(AttributeError, match="immutable"):
+            clone.psd.H = 0.3
+    tab = copy.deepcopy(pf.TabulatedPSD([1.0, 2.0, 4.0], [1.0, 0.5, 0.1]))
+    with pytest.raises(ValueError):
+        tab.values[0] = 2.0

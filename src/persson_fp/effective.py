@@ -120,7 +120,9 @@ class EffectiveVariance:
             v = np.where(v <= _V_MAX, v, np.inf)  # 0/0 (V = 0 with p_bar^2 underflowed) -> far branch, tau = 0
             near = p2 * self.u_of_v(np.minimum(v, _V_MAX))
         far = self.slope_end * V + p2 * (self.u_end - self.slope_end * _V_MAX)
-        return np.where(v <= _V_MAX, near, far)
+        out = np.where(v <= _V_MAX, near, far)
+        # A* = 1 branch written without V / p^2, which underflows for huge loads (p_bar ~ 1e150, small V)
+        return np.where(V <= self.v0 * p2, self.S1 * V, out)
 
     def V_of_tau(self, p_bar, tau) -> np.ndarray:
         """The complete-contact variance V at which the effective variance reaches ``tau`` (inverse of
@@ -134,8 +136,9 @@ class EffectiveVariance:
             u = tau / p2
             u = np.where(u <= self.u_end, u, np.inf)
             near = p2 * self.v_of_u(np.minimum(u, self.u_end))
-        far = _V_MAX * p2 + (tau - self.u_end * p2) / self.slope_end
-        return np.where(u <= self.u_end, near, far)
+            far = _V_MAX * p2 + (tau - self.u_end * p2) / self.slope_end  # (overflows only where unused)
+        out = np.where(u <= self.u_end, near, far)
+        return np.where(tau <= _U0 * p2, tau / self.S1, out)  # (as in tau: no tau / p^2 underflow)
 
 
 _CACHE: dict = {}

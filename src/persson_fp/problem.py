@@ -54,6 +54,16 @@ class ContactProblem:
             raise AttributeError(f"ContactProblem is immutable (attribute {name!r}); use with_loads() or build anew")
         object.__setattr__(self, name, value)
 
+    def __delattr__(self, name):
+        raise AttributeError(f"ContactProblem is immutable (attribute {name!r})")
+
+    def __setstate__(self, state):  # pickle / deepcopy: the copied arrays arrive writeable, freeze them again
+        for key, value in state.items():
+            object.__setattr__(self, key, value)
+        for value in self.__dict__.values():
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+
     def __init__(self, psd: PSD, E_star: float = 1.0, p_bar=None, fudge=None):
         if not isinstance(psd, PSD):
             raise ValueError(f"psd must be a SelfAffinePSD or TabulatedPSD, got {type(psd).__name__}")

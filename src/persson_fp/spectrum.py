@@ -81,11 +81,22 @@ class PSD:
             raise AttributeError(f"{type(self).__name__} is immutable (attribute {name!r}); build a new spectrum")
         object.__setattr__(self, name, value)
 
-    def _freeze(self) -> None:
-        """End of a subclass's ``__init__``: make the instance (and its arrays) read-only."""
+    def __delattr__(self, name):
+        raise AttributeError(f"{type(self).__name__} is immutable (attribute {name!r})")
+
+    def __setstate__(self, state):  # pickle / deepcopy: copies arrive writeable, freeze them again
+        for key, value in state.items():
+            object.__setattr__(self, key, value)
+        self._freeze_arrays()
+
+    def _freeze_arrays(self) -> None:
         for value in self.__dict__.values():
             if isinstance(value, np.ndarray):
                 value.setflags(write=False)
+
+    def _freeze(self) -> None:
+        """End of a subclass's ``__init__``: make the instance (and its arrays) read-only."""
+        self._freeze_arrays()
         self._frozen = True
 
     @property
