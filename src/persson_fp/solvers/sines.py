@@ -29,9 +29,12 @@ variance integrals that :class:`~persson_fp.Solution` forms from the weights.
 
 **Fudge factors** (``eq:new_B2``).  tau(zeta) must come from the *numerical* area of the series,
 :math:`d\tau/dV = S(A_h(\tau))`, where :math:`A_h` is :func:`series_area` with the solve's N modes
-for :math:`\tau \ge \tau_N` (where they are converged to ``tol``) and its exact Poisson dual
-:func:`image_area` below (both clipped to [0, 1]).  :math:`A_h` depends on tau alone, so the ODE is
-separable: the tau of a station with complete-contact variance :math:`V_{out}` is the root of
+for :math:`\tau \ge \max(\tau_N, \tau_{sw})` (:math:`\tau_N`: where they are converged to ``tol``) and the
+infinite series below, summed as its exact Poisson dual :func:`image_area` (both clipped to [0, 1]; below
+:math:`\tau_{sw}` that is 1 to round-off, see *Tiny tau*; with ``tol`` near its 1e-2 limit, where
+:math:`\tau_N < \tau_{sw}`, the N-mode series would differ from it there by up to ``tol``: measured 1e-6 in
+tau).  :math:`A_h` depends on tau alone, so the ODE is separable: the tau of a station with
+complete-contact variance :math:`V_{out}` is the root of
 
 .. math::  F(\tau) = V_{sw} + \int_{\tau_{sw}}^{\tau} \frac{dt}{S(A_h(t))} - V_{out},
            \qquad \frac{dF}{d\ln\tau} = \frac{\tau}{S(A_h(\tau))}
@@ -71,6 +74,8 @@ max :math:`|F|/V_{out}` (its Taylor bound; ``tau_map_residual``) and whether the
 *Tiny tau.*  For :math:`\tau \le \tau_{sw} = \bar p^2/72` the series area is 1 to round-off:
 the infinite series equals the image sum on [0, L] (Poisson summation), whose mass defect is
 :math:`\mathrm{erfc}(\bar p/\sqrt{2\tau}) < 2\cdot10^{-17}` there, so :math:`\tau = S(1)\,V` exactly.
+On the direct path (far wall not negligible) :math:`\tau_{sw} = \min(\bar p, L - \bar p)^2/72`, so that
+the far wall's share is below the same bound.
 Between :math:`\tau_{sw}` and :math:`\tau_N` (where the chosen N modes are converged to ``tol``)
 the same infinite series is summed in that dual form (:func:`image_area`, images |k| <= 1,
 the rest below e^-200), so the mode count only has to serve the output stations: the default
@@ -92,6 +97,10 @@ from ..fudge import NoFudge, Xu24
 from .base import Solver, SolverOutput, check_float, check_int
 
 __all__ = ["SineSeriesSolver", "series_area", "image_area", "series_pdf", "modes_needed"]
+
+_MAX_MODES = 5000
+"""Most modes sines will use for the output (the P0 evaluation holds ~1.2 N^2 numbers: 240 MB at 5000) and
+asks for by default; beyond, the stations' PDFs are too narrow for the domain and it refuses (ValueError)."""
 
 _X_SWITCH = 6.0
 """A* = 1 to round-off while p_bar / sqrt(2 tau) >= 6 (erfc(6) = 2.2e-17)."""
@@ -431,6 +440,10 @@ class _TauMap:
         self.L, self.N, self.tol, self.direct, self.pb = L, N, tol, direct, problem.p_bar
         self.tau_N, self.x_N, self.n1, self.lam, self.tau_end, self.C_bound = _mode_terms(L, N, tol, tab.dh_max)
         self.lp2, self.x_sw, self.tau_sw, self.V_sw, self.V_sw_max = _load_terms(problem, tab.S1)
+        if direct:  # the far wall may take area early: A_h = 1 only while both walls are >= 6 sigma away
+            tau_sw = np.minimum(self.tau_sw, (L - self.pb) ** 2 / (2.0 * _X_SWITCH**2))
+            self.tau_sw, self.x_sw, self.V_sw = tau_sw, np.log(tau_sw), tau_sw / tab.S1
+            self.V_sw_max = float(self.V_sw.max())
         self.correct = False  # with the dropped-mode correction (set by solve)
         self._L_a = self._tail = None  # its value from a = max(tau_N, tau_sw) on, and the dropped modes
         self.nodes = 0  # evaluations of the area
@@ -630,6 +643,13 @@ class SineSeriesSolver(Solver):
             # smallest tau that matters: the first station (tau >= min(S) V there); below it the
             # fudge factor's tau map evaluates the series area through its image dual (_tau_map)
             N = _modes_needed_scalar(L, (1.0 if tab is None else tab.S_min) * float(V_out[0]), tol)
+            if N > _MAX_MODES:
+                sigma = math.sqrt(float(np.min(self.tau_out[0])))
+                raise ValueError(
+                    f"sines: the first station zeta = {self.zeta_out[0]:.6g} needs {N} modes (> {_MAX_MODES}): "
+                    f"its PDF is too narrow for the domain [0, {L:.3g}] (sqrt(tau) = {sigma:.3g}); start zeta_out "
+                    "later, use fewer/closer loads, or use pf.exact / method='fv'"
+                )
         if tab is None:  # tau = V
             tau = np.repeat(V_out[:, None], pb.size, axis=1)
             tinfo = {"tau_map_nodes": 0, "tau_map_iterations": 0, "tau_map_residual": 0.0}
@@ -638,6 +658,11 @@ class SineSeriesSolver(Solver):
 
         # output modes: those above tol / 1e3 at the first station, at most N
         N_out = min(N, _modes_needed_scalar(L, float(np.min(tau[0])), tol * 1e-3))
+        if N_out > _MAX_MODES:  # (n_p given): the output alone would take ~ N_out^2 numbers
+            raise ValueError(
+                f"sines: the first station zeta = {self.zeta_out[0]:.6g} needs {N_out} output modes (> {_MAX_MODES}); "
+                "start zeta_out later, use fewer/closer loads, or use pf.exact / method='fv'"
+            )
         n_eval = o["n_eval"] or max(64, math.ceil(1.2 * N_out + 40))
         xg, wg = _gauss_legendre(n_eval)
         p = (0.5 * L) * (xg + 1.0)
