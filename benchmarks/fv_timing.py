@@ -5,7 +5,8 @@ discretisation, stepping, n_p, n_steps, then for the banded path (tridiagonal so
 spectral path (``linalg="dst"``, the default) the median solver wall time (``sol.wall_time``),
 the speedup, the largest difference of the two P0 relative to max P0 (the same discrete solution:
 round-off), and L1 of P0 and |dA*| at zeta_max on the reference problem (of the dst run); then
-the 1000-load batch with YP08, both paths.  No plots, no files.
+the 1000-load batch with YP08, both paths; then, with YP08, the whole-trajectory coupling against the
+step-by-step march for 1-10 loads (why fv uses the former for one load only).  No plots, no files.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ import time
 import numpy as np
 
 import persson_fp as pf
+import persson_fp.solvers.fv as fv_module
 
 CASES = [
     # (fudge, scheme, space, stepping, n_p, n_steps)
@@ -98,6 +100,23 @@ def main(repeats: int = 7) -> None:
             f"{tb * 1e3:.0f} ms, dst {td * 1e3:.0f} ms ({tb / td:.1f}x; "
             f"whole call {cb * 1e3:.0f} / {cd * 1e3:.0f} ms), "
             f"|dP|/max {dP:.1e}, worst L1 {c.L1[-1].max():.2e}, worst |dA*| {c.area_error[-1].max():.2e}"
+        )
+
+    # whole-trajectory coupling (one load) against the step march, YP08, n_p = 200, 100 steps
+    for m in (1, 2, 3, 5, 10):
+        pr = base.with_loads(np.sqrt(float(base.V())) * np.geomspace(0.05, 3.0, m))
+        times = {}
+        for label, size in (("trajectory", 10**12), ("step march", 0)):
+            saved = (fv_module._TRAJECTORY_SIZE, fv_module._fudge_trajectory_max_loads)
+            fv_module._TRAJECTORY_SIZE, fv_module._fudge_trajectory_max_loads = size, m
+            try:
+                pf.solve(pr, "fv", n_p=200, n_steps=100)  # warm-up
+                times[label] = median_time(lambda pr=pr: pf.solve(pr, "fv", n_p=200, n_steps=100), repeats)[0]
+            finally:
+                fv_module._TRAJECTORY_SIZE, fv_module._fudge_trajectory_max_loads = saved
+        print(
+            f"YP08 {m:2d} load(s), n_p=200, 100 steps: trajectory {times['trajectory'] * 1e3:.2f} ms, "
+            f"step march {times['step march'] * 1e3:.2f} ms"
         )
 
 

@@ -387,3 +387,13 @@ def test_implicit_from_a_delta_is_not_reported_unstable(problems, linalg):
     sol = pf.solve(pr, "fv", n_p=120, n_steps=100, initial="delta", scheme="implicit", linalg=linalg)
     assert sol.info["checks"]["min_P0"] > -1e-10
     assert sol.compare().L1.max() < 2e-2
+
+
+def test_fudge_trajectory_for_a_small_batch(problems):
+    """The several-load branch of the trajectory coupling (up to _fudge_trajectory_max_loads = 3 loads) gives the
+    banded path's solution too."""
+    base = problems["YP08"]
+    pr = base.with_loads(np.sqrt(float(base.V())) * np.array([0.05, 0.5, 3.0]))
+    a, b = both(pr, n_p=80, n_steps=40, zeta_out=[5.0, 128.0])
+    assert b.info["trajectory_sweeps"] >= 2
+    assert_same(a, b)

@@ -76,23 +76,24 @@ transform; P is transformed back only at the output stations.  For the lagged an
 (whose :math:`\Delta\tau_n` depends on the state before step n only) the whole sequence of steps is
 found at once, as the fixed point of a causal map solved by 3-8 Newton sweeps over the trajectory
 (``FiniteVolumeSolver._fudge_trajectory``: each sweep one cumulative product over steps x modes, the
-Jacobian approximated by the wall outflux), then the run is the closed form above.  This is done for one
-load (``_TRAJECTORY_SIZE`` numbers at most); batches march step by step, vectorised over the loads, which
-measured faster from two loads on (3 loads: 5.5 against 6.3 ms; 10 loads: 6.7 against 16 ms), as do runs with
-fewer than 16 steps and ``"picard"``.  Either way it is the banded path's discrete solution to ~1e-13.  The wall fluxes
-are functionals too, accumulated with the scheme's stage weights (per-mode weight F(x)), so ``contact_area_flux`` and
-``far_wall_mass`` are the banded path's to round-off.  The stability checks run on coefficients:
-non-finite values, negative or growing A*, and growth of :math:`\|P\|_2 = \|c\|_2` (which
-:math:`|R_j| \le 1` makes non-increasing) instead of max |P|; an explicit step past its limit
-(:math:`|R_j| > 1` for the top modes) still raises :class:`InstabilityError`.  The fast path is
+Jacobian approximated by the wall outflux), then the run is the closed form above.  This is done for up to
+three loads (``_fudge_trajectory_max_loads``, ``_TRAJECTORY_SIZE`` numbers at most); larger batches march step by
+step, vectorised over the loads, which is faster from about five loads on (``benchmarks/fv_timing.py``, last
+table), as do runs with fewer than 16 steps and ``"picard"``.  Either way it is the banded path's
+discrete solution to ~1e-13.  The wall fluxes are functionals too, accumulated with the scheme's stage
+weights (per-mode weight F(x)), so ``contact_area_flux`` and ``far_wall_mass`` are the banded path's to
+round-off.  The stability checks run on coefficients: non-finite values, negative or growing A* (as the
+conserved sum(M P) dp), and growth of :math:`\|P\|_2 = \|c\|_2` (which :math:`|R_j| \le 1` makes
+non-increasing) instead of max |P|; an explicit step past its limit (:math:`|R_j| > 1` for the top
+modes) still raises :class:`InstabilityError`.  The fast path is
 exact for every option of this solver, so "auto" always picks it; ``linalg="banded"`` keeps the
 tridiagonal solves below as the readable reference (the two agree to ~1e-14 of max P0).  It would
 stop being exact with a wall that is not odd (a reflecting far wall, another basis) or a
 non-uniform grid in p.  Coefficients below 1e-200 of :math:`\|P_0\|_2` are set to zero (the top
 modes would otherwise decay into subnormal numbers, ~100x slower arithmetic).  Measured
-(``benchmarks/fv_timing.py``): 1.6-14x faster than the banded path for one load without a fudge
-factor and 3-7x with YP08 (the trajectory sweeps), where the set-up (start-up data and nodes, ~1 ms)
-is a large part of the time, and 3.1-3.4x for 1000 loads with YP08 (step by step, vectorised over the
+(``benchmarks/fv_timing.py``): 1.9-13x faster than the banded path for one load without a fudge
+factor and 3.8-7.9x with YP08 (the trajectory sweeps), where the set-up (start-up data and nodes, ~1 ms)
+is a large part of the time, and 6.4-7.3x for 1000 loads with YP08 (step by step, vectorised over the
 loads).
 
 *Stepping* (measured on the reference problem, ``benchmarks/fv_timing.py``): nodes uniform in the
@@ -175,9 +176,12 @@ _FLUSH = 1e-200
 |R| << 1 a step into the subnormal range, where arithmetic is ~100x slower (measured: 10 ms instead
 of 1.3 ms a step for 1000 loads); 1e-200 of the data is far below round-off."""
 _TRAJECTORY_SIZE = 2_000_000
-"""DST path with a fudge factor: one-load runs with n_steps x n_p up to this many numbers solve the
-coupling for the whole trajectory at once (FiniteVolumeSolver._fudge_trajectory); batches march step by
-step (vectorised over the loads, which amortises the per-step overhead there)."""
+"""DST path with a fudge factor: runs of at most ``_fudge_trajectory_max_loads`` loads with n_loads x n_steps x n_p
+up to this many numbers solve the coupling for the whole trajectory at once (FiniteVolumeSolver._fudge_trajectory);
+others march step by step (vectorised over the loads, which amortises the per-step overhead there)."""
+_fudge_trajectory_max_loads = 3
+"""Most loads solved by the whole-trajectory coupling; larger batches march step by step, vectorised over
+the loads (benchmarks/fv_timing.py times both for 1-10 loads: break-even near 5 loads)."""
 _TRAJECTORY_MIN_STEPS = 16
 """Below this many steps the step-by-step march is as cheap as the 4-8 sweeps of the trajectory."""
 _TRAJECTORY_SWEEPS = 30
@@ -857,7 +861,7 @@ class FiniteVolumeSolver(Solver):
         W = np.ascontiguousarray(W[:, :, keep])
         lam = sp.lam[keep]
         mass0, b0 = W[0].sum(axis=-1), W[1].sum(axis=-1)  # at the start (node 0)
-        WT = np.ascontiguousarray(W[:, 0, :].T)  # (modes, 2): one load (the caller's rule)
+        WT = np.ascontiguousarray(W[:, 0, :].T) if m == 1 else None  # one load: a matmul, not an einsum
         r0 = min(self._damped_steps(), dts.shape[0])
         kind = self._step_kind(dts.shape[0])
         chord = None  # the correction's recurrence, set up once (a chord method: the Jacobian is approximate anyway)
@@ -868,7 +872,10 @@ class FiniteVolumeSolver(Solver):
                 if r0 > 0:
                     R[:r0] = _growth("be-halves", theta, X[:r0])
                 G = np.cumprod(R, axis=0)  # amplification up to the start of steps 1..n-1
-                Q = (G[:, 0, :] @ WT).T[:, :, None]  # (2, n_steps - 1, 1)
+                if WT is not None:
+                    Q = (G[:, 0, :] @ WT).T[:, :, None]  # (2, n_steps - 1, 1)
+                else:  # several loads
+                    Q = np.einsum("cjn,kjn->ckj", W, G)  # (2, n_steps - 1, m)
                 if not np.all(np.isfinite(Q)):
                     return None, sweep
                 mass = np.concatenate([mass0[None], Q[0]])
@@ -1010,8 +1017,8 @@ class FiniteVolumeSolver(Solver):
             not no_fudge
             and coupling != "picard"
             and n_steps >= _TRAJECTORY_MIN_STEPS
-            and m == 1
-            and n_steps * N <= _TRAJECTORY_SIZE
+            and m <= _fudge_trajectory_max_loads
+            and m * n_steps * N <= _TRAJECTORY_SIZE
         ):
             dts, sweeps = self._fudge_trajectory(sp, C0, V_nodes, theta, coupling)
             if dts is not None:
