@@ -85,3 +85,12 @@ def test_immutability_survives_pickle_and_deepcopy():
     tab = copy.deepcopy(pf.TabulatedPSD([1.0, 2.0, 4.0], [1.0, 0.5, 0.1]))
     with pytest.raises(ValueError):
         tab.values[0] = 2.0
+
+
+@pytest.mark.parametrize("bad", [-1e-6, np.nan])
+def test_tau_maps_refuse_negative_or_nan(bad):
+    pr = pf.ContactProblem.reference(fudge="YP08", p_bar_ratio=np.array([0.1, 1.0]))
+    with pytest.raises(ValueError, match="V must be >= 0"):
+        pr.tau_of_V(bad)
+    with pytest.raises(ValueError, match="tau must be >= 0"):
+        pr.V_of_tau_each(np.array([0.01, bad]))

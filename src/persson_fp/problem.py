@@ -152,8 +152,10 @@ class ContactProblem:
         return self.tau_of_V_each(np.broadcast_to(V, V.shape[:-1] + (self.n_loads,)))
 
     def tau_of_V_each(self, V) -> np.ndarray:
-        """tau (pressure^2) at one complete-contact variance per load: ``V`` has shape (..., n_loads)."""
+        """tau (pressure^2) at one complete-contact variance per load: ``V`` has shape (..., n_loads), V >= 0."""
         V = np.asarray(V, dtype=float)
+        if not np.all(V >= 0.0):  # (NaN fails too)
+            raise ValueError("V must be >= 0 (a complete-contact pressure variance), got a negative value or NaN")
         if isinstance(self.fudge, _fudge.NoFudge):
             return np.array(V)
         if isinstance(self.fudge, _fudge.Xu24):
@@ -166,6 +168,8 @@ class ContactProblem:
         ``tau`` of shape (..., n_loads).  Xu24 in closed form, V = tau / g(A*) with A* = erf(p_bar / sqrt(2 tau));
         the ODE models through the inverse of the same table."""
         tau = np.asarray(tau, dtype=float)
+        if not np.all(tau >= 0.0):  # (NaN fails too)
+            raise ValueError("tau must be >= 0 (an effective pressure variance), got a negative value or NaN")
         if isinstance(self.fudge, _fudge.NoFudge):
             return np.array(tau)
         if isinstance(self.fudge, _fudge.Xu24):
