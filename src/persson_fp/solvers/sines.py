@@ -33,7 +33,7 @@ for :math:`\tau \ge \max(\tau_N, \tau_{sw})` (:math:`\tau_N`: where they are con
 infinite series below, summed as its exact Poisson dual :func:`image_area` (both clipped to [0, 1]; below
 :math:`\tau_{sw}` that is 1 to round-off, see *Tiny tau*; with ``tol`` near its 1e-2 limit, where
 :math:`\tau_N < \tau_{sw}`, the N-mode series would differ from it there by up to ``tol``, which moves
-tau by at most ``tol`` max|S'|/S_min relative).  :math:`A_h` depends on tau alone, so the ODE is
+tau by at most ``tol`` max|S'| S_max / S_min^2 relative).  :math:`A_h` depends on tau alone, so the ODE is
 separable: the tau of a station with complete-contact variance :math:`V_{out}` is the root of
 
 .. math::  F(\tau) = V_{sw} + \int_{\tau_{sw}}^{\tau} \frac{dt}{S(A_h(t))} - V_{out},
