@@ -25,6 +25,7 @@ from scipy.special import erf, erfc
 
 from ._validate import as_float_array, as_positive_scalar
 from .problem import ContactProblem
+from .strip import strip_cdf, strip_pdf, strip_quantities
 
 __all__ = [
     "ExactSolution",
@@ -103,8 +104,11 @@ class ExactSolution:
     zeta : magnifications (dimensionless)
     V : complete-contact variance V(zeta) (pressure^2), shape ``(n_zeta,)``
     tau : effective variance (pressure^2); equals V without a fudge factor
-    contact_area : A* = erf(p_bar / sqrt(2 tau)) (``eq:Area_Persson``)
+    contact_area : A* = erf(p_bar / sqrt(2 tau)) (``eq:Area_Persson``); with a hardness A_el + A_pl
     atom : 1 - A*, the probability of p = 0, computed as erfc (``eq:PDF_piecewise_explicit``)
+    elastic_area, plastic_area, noncontact_area : A_el, A_pl, A_non (sum 1); without a hardness
+        A_el = A*, A_pl = 0.  With a constant hardness the strip series of :mod:`persson_fp.strip`.
+    elastic_load, plastic_load : F_el = int p P0 dp, F_pl = sigma_Y A_pl (pressure), F_el + F_pl = p_bar
     area_asymptote : sqrt(2/pi) p_bar / sqrt(tau), the small-load limit (``eq:Asymptote_1``)
     variance : Var(p) (pressure^2), ``eq:variance_p_form1`` (int A* dtau with a fudge factor)
     second_moment : <p^2> = Var + p_bar^2 (pressure^2)
@@ -112,6 +116,11 @@ class ExactSolution:
 
     def __init__(self, problem: ContactProblem, zeta=None):
         _check_problem(problem)
+        if problem.moving_wall:
+            raise ValueError(
+                f"a scale-dependent hardness ({problem.hardness!r}) is a moving yield wall with no closed form; "
+                "solve it numerically: pf.solve(problem, method='fv') (or 'mol')"
+            )
         self.problem = problem
         z = problem.zeta_max if zeta is None else zeta
         z = as_float_array(z, "zeta")
@@ -125,8 +134,23 @@ class ExactSolution:
         with np.errstate(divide="ignore"):
             x = np.divide(pb, np.sqrt(2.0 * self._tau), out=np.full(self._tau.shape, np.inf), where=self._tau > 0)
         self._x = x
-        self._A = erf(x)
-        self._atom = erfc(x)
+        self._strip = None
+        if problem.hardness is not None:  # constant hardness: the strip series (persson_fp.strip)
+            sig = float(problem.hardness.sigma(1.0))
+            self._sigma = sig
+            tau_pos = np.where(self._tau > 0, self._tau, 1.0)
+            q = strip_quantities(np.broadcast_to(pb, self._tau.shape), sig, tau_pos)
+            at1 = self._tau <= 0
+            q["elastic_area"][at1], q["plastic_area"][at1], q["noncontact_area"][at1] = 1.0, 0.0, 0.0
+            q["elastic_load"][at1] = np.broadcast_to(pb, self._tau.shape)[at1]
+            q["plastic_load"][at1] = 0.0
+            q["elastic_second_moment"][at1] = np.broadcast_to(pb**2, self._tau.shape)[at1]
+            self._strip = q
+            self._A = q["elastic_area"] + q["plastic_area"]
+            self._atom = q["noncontact_area"]
+        else:
+            self._A = erf(x)
+            self._atom = erfc(x)
 
     def _shape(self, a):
         if self.problem.scalar_load:
@@ -159,18 +183,51 @@ class ExactSolution:
     def atom(self):
         return self._shape(self._atom)
 
+    # -- elastoplastic split (a hardness wall; without one: elastic = contact area, plastic = 0) --------
+    @property
+    def elastic_area(self):
+        """A_el = int_0^sigma_Y P0 dp: the elastically loaded fraction of the nominal area."""
+        return self._shape(self._A if self._strip is None else self._strip["elastic_area"])
+
+    @property
+    def plastic_area(self):
+        """A_pl: the fraction in plastic contact (the mass absorbed at the yield wall sigma_Y)."""
+        return self._shape(np.zeros_like(self._A) if self._strip is None else self._strip["plastic_area"])
+
+    @property
+    def noncontact_area(self):
+        """A_non = 1 - A_el - A_pl: the fraction out of contact (the atom at p = 0)."""
+        return self._shape(self._atom)
+
+    @property
+    def elastic_load(self):
+        """F_el = int p P0 dp (pressure): the load carried elastically."""
+        pb = np.broadcast_to(self.problem.p_bar[None, :], self._A.shape)
+        return self._shape(pb.copy() if self._strip is None else self._strip["elastic_load"])
+
+    @property
+    def plastic_load(self):
+        """F_pl = sigma_Y A_pl (pressure); F_el + F_pl = p_bar (``eq:Load_equilibrium``)."""
+        return self._shape(np.zeros_like(self._A) if self._strip is None else self._strip["plastic_load"])
+
     @property
     def area_asymptote(self):
         with np.errstate(divide="ignore"):
             return self._shape(2.0 / np.sqrt(np.pi) * self._x)
 
+    def _second_moment(self):
+        if self._strip is None:
+            return variance_closed_form(self.problem.p_bar[None, :], self._tau) + self.problem.p_bar**2
+        return self._strip["elastic_second_moment"] + self._sigma**2 * self._strip["plastic_area"]
+
     @property
     def variance(self):
-        return self._shape(variance_closed_form(self.problem.p_bar[None, :], self._tau))
+        """Var(p) over the whole interface (pressure^2): atoms at 0 and (with a hardness) at sigma_Y included."""
+        return self._shape(self._second_moment() - self.problem.p_bar**2)
 
     @property
     def second_moment(self):
-        return self._shape(variance_closed_form(self.problem.p_bar[None, :], self._tau) + self.problem.p_bar**2)
+        return self._shape(self._second_moment())
 
     def pdf(self, p) -> np.ndarray:
         """P0(p) (1/pressure) of the continuous part, ``eq:P0_solution`` at tau.
@@ -183,7 +240,10 @@ class ExactSolution:
             raise ValueError("P0 at zeta = 1 is the delta function delta(p - p_bar); ask for zeta > 1")
         pb = self.problem.p_bar[None, :]
         ext = (Ellipsis,) + (None,) * p.ndim
-        out = image_pdf(p, pb[ext], self._tau[ext])
+        if self._strip is not None:
+            out = strip_pdf(p, pb[ext], self._sigma, self._tau[ext])
+        else:
+            out = image_pdf(p, pb[ext], self._tau[ext])
         if self.problem.scalar_load:
             out = out[:, 0]
         if self._scalar_zeta:
@@ -197,6 +257,11 @@ class ExactSolution:
             raise ValueError("P0 at zeta = 1 is the delta function delta(p - p_bar); ask for zeta > 1")
         pb = self.problem.p_bar[None, :]
         ext = (Ellipsis,) + (None,) * p.ndim
+        if self._strip is not None:
+            out = strip_cdf(p, pb[ext], self._sigma, self._tau[ext])
+            if self.problem.scalar_load:
+                out = out[:, 0]
+            return out[0] if self._scalar_zeta else out
         s = np.sqrt(2.0 * self._tau)[ext]
         # int_0^p [rho(p';pb) - rho(p';-pb)] dp' = [erf((p-pb)/s) + erf(pb/s)]/2 - [erf((p+pb)/s) - erf(pb/s)]/2
         out = 0.5 * (erf((p - pb[ext]) / s) - erf((p + pb[ext]) / s)) + erf(pb[ext] / s)

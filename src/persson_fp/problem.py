@@ -12,9 +12,11 @@ import numpy as np
 from scipy.special import erf
 
 from . import fudge as _fudge
+from . import hardness as _hardness
 from ._validate import as_float_array, as_positive_scalar
 from .effective import effective_variance
 from .spectrum import PSD, SelfAffinePSD
+from .strip import StripEffectiveVariance
 
 __all__ = ["ContactProblem"]
 
@@ -36,6 +38,14 @@ class ContactProblem:
         ``None`` (Persson 2001), ``"YP08"``, ``"WM17"``, ``"Xu24"``, a
         :class:`~persson_fp.fudge.FudgeFactor` instance, or any callable
         ``S(A)`` that is finite and > 0 on [0, 1] (``eq:new_B2``).
+    hardness : None, float, Hardness or callable, pressure
+        Yield stress sigma_Y that caps the contact pressure (elastoplastic contact, Persson, Phys. Rev.
+        Lett. 87 (2001) 116101): ``None`` (purely elastic), a number (constant hardness: the strip
+        problem, exact in closed form, :mod:`persson_fp.strip`), a :class:`~persson_fp.hardness.PowerLaw`
+        ``(sigma_1, n)`` or any callable ``sigma_Y(zeta)`` -- positive, non-decreasing in zeta and above
+        every load at zeta = 1 (a scale-dependent hardness is a moving wall: no closed form, the PDE
+        solvers ``"fv"`` and ``"mol"`` solve it).  With a fudge factor, S is evaluated at the total
+        contact area A_el + A_pl.
 
     Raises
     ------
@@ -64,7 +74,7 @@ class ContactProblem:
             if isinstance(value, np.ndarray):
                 value.setflags(write=False)
 
-    def __init__(self, psd: PSD, E_star: float = 1.0, p_bar=None, fudge=None):
+    def __init__(self, psd: PSD, E_star: float = 1.0, p_bar=None, fudge=None, hardness=None):
         if not isinstance(psd, PSD):
             raise ValueError(f"psd must be a SelfAffinePSD or TabulatedPSD, got {type(psd).__name__}")
         self.psd = psd
@@ -86,26 +96,31 @@ class ContactProblem:
         self.p_bar = np.atleast_1d(pb).astype(float)
         self.p_bar.setflags(write=False)
         self.fudge = _fudge.resolve(fudge)
+        self.hardness = _hardness.resolve(hardness)
+        if self.hardness is not None:
+            self.hardness.check(self.psd.zeta_max, float(np.max(self.p_bar)))
+        self._strip_ev = None  # StripEffectiveVariance, on first use (constant hardness with a fudge factor)
         self._V_max = float(self.psd.V(None, self.E_star))
         self._tau_max = None  # (n_loads,), on first use
         self._frozen = True
 
     # -- construction helpers ---------------------------------------------------
     @classmethod
-    def reference(cls, fudge=None, p_bar_ratio=0.5, H: float = 0.8, zeta_max: float = 128.0):
-        """DESIGN's reference problem: H = 0.8, q_l = 1, q_r = 2, q_s = ``zeta_max``,
-        rms slope 0.1, E* = 1 and p_bar = ``p_bar_ratio`` * sqrt(V(zeta_max))."""
+    def reference(cls, fudge=None, p_bar_ratio=0.5, H: float = 0.8, zeta_max: float = 128.0, hardness=None):
+        """The reference problem of the tests and benchmarks: H = 0.8, q_l = 1, q_r = 2, q_s = ``zeta_max``,
+        rms slope 0.1, E* = 1 and p_bar = ``p_bar_ratio`` * sqrt(V(zeta_max)); ``hardness`` as in the class."""
         psd = SelfAffinePSD.from_rms_slope(0.1, H=H, q_l=1.0, q_r=2.0, q_s=zeta_max)
         ratio = as_float_array(p_bar_ratio, "p_bar_ratio")
-        return cls(psd, E_star=1.0, p_bar=ratio * np.sqrt(psd.V(E_star=1.0)), fudge=fudge)
+        return cls(psd, E_star=1.0, p_bar=ratio * np.sqrt(psd.V(E_star=1.0)), fudge=fudge, hardness=hardness)
 
     def with_loads(self, p_bar) -> ContactProblem:
         """The same surface and fudge factor with other load(s)."""
-        return ContactProblem(self.psd, self.E_star, p_bar, self.fudge)
+        return ContactProblem(self.psd, self.E_star, p_bar, self.fudge, self.hardness)
 
     def __repr__(self):
         loads = f"{self.p_bar[0]:.6g}" if self.scalar_load else f"<{self.p_bar.size} loads>"
-        return f"ContactProblem({self.psd!r}, E_star={self.E_star:.6g}, p_bar={loads}, fudge={self.fudge.name!r})"
+        hard = "" if self.hardness is None else f", hardness={self.hardness!r}"
+        return f"ContactProblem({self.psd!r}, E_star={self.E_star:.6g}, p_bar={loads}, fudge={self.fudge.name!r}{hard})"
 
     # -- coefficients ---------------------------------------------------------------
     @property
@@ -158,6 +173,8 @@ class ContactProblem:
             raise ValueError("V must be >= 0 (a complete-contact pressure variance), got a negative value or NaN")
         if isinstance(self.fudge, _fudge.NoFudge):
             return np.array(V)
+        if self.hardness is not None:
+            return self._strip_effective().tau(V)
         if isinstance(self.fudge, _fudge.Xu24):
             A = self.fudge.area(self.p_bar, V)
             return self.fudge.g(A) * V
@@ -172,11 +189,37 @@ class ContactProblem:
             raise ValueError("tau must be >= 0 (an effective pressure variance), got a negative value or NaN")
         if isinstance(self.fudge, _fudge.NoFudge):
             return np.array(tau)
+        if self.hardness is not None:
+            return self._strip_effective().V_of_tau(tau)
         if isinstance(self.fudge, _fudge.Xu24):
             with np.errstate(divide="ignore"):
                 A = erf(np.divide(self.p_bar, np.sqrt(2.0 * tau), out=np.full(tau.shape, np.inf), where=tau > 0))
             return tau / self.fudge.g(A)
         return effective_variance(self.fudge).V_of_tau(self.p_bar, tau)
+
+    @property
+    def moving_wall(self) -> bool:
+        """True for a scale-dependent hardness (a yield wall that moves with zeta: no closed form)."""
+        return self.hardness is not None and not self.hardness.is_constant
+
+    def sigma_Y(self, zeta=None) -> np.ndarray:
+        """Hardness sigma_Y(zeta) (pressure); inf without a hardness."""
+        z = self.zeta_max if zeta is None else zeta
+        if self.hardness is None:
+            return np.full(np.shape(z), np.inf)
+        return self.hardness.sigma(z)
+
+    def _strip_effective(self) -> StripEffectiveVariance:
+        """The effective-variance map of a fudge factor with a hardness wall, solved once per problem."""
+        if self.moving_wall:
+            raise ValueError(
+                "a scale-dependent hardness with a fudge factor has no closed-form effective variance: the "
+                "area that S depends on comes from the numerical solution (pf.solve(problem, method='fv'))"
+            )
+        if self._strip_ev is None:
+            ev = StripEffectiveVariance(self.fudge.S, self.p_bar, float(self.hardness.sigma(1.0)), self._V_max)
+            object.__setattr__(self, "_strip_ev", ev)
+        return self._strip_ev
 
     def tau(self, zeta=None) -> np.ndarray:
         """Effective variance tau(zeta) = int S dV (pressure^2), shape ``zeta.shape + (n_loads,)``."""
@@ -189,9 +232,11 @@ class ContactProblem:
         return self.fudge.S(A) * self.dV_dzeta(zeta)
 
     def p_max(self, k: float = 10.0) -> float:
-        """Far end of a pressure grid: max(p_bar) + k sqrt(tau(zeta_max)) (pressure).
+        """Far end of a pressure grid: max(p_bar) + k sqrt(tau(zeta_max)) (pressure); sigma_Y for a constant hardness.
 
         With k = 10 the image solution there is below exp(-50) of its peak.
         """
         k = as_positive_scalar(k, "k")
+        if self.hardness is not None and self.hardness.is_constant:
+            return float(self.hardness.sigma(1.0))  # the strip: the yield wall is the domain's end
         return float(np.max(self.p_bar + k * np.sqrt(self.tau_max)))

@@ -22,6 +22,12 @@ from .problem import ContactProblem
 __all__ = ["Solution", "Comparison", "SolverError", "InstabilityError"]
 
 
+def _station_axis(a):
+    """Grid weights of shape (n_p,) or (n_zeta, n_p) as (n_zeta or 1, 1, n_p), to broadcast over loads."""
+    a = np.asarray(a, dtype=float)
+    return a[None, None, :] if a.ndim == 1 else a[:, None, :]
+
+
 class SolverError(RuntimeError):
     """A solver could not produce a trustworthy result."""
 
@@ -44,6 +50,8 @@ class Comparison:
     load_drift : |int p P0 dp - p_bar| / p_bar
     mass_balance : |A*(integral) - A*(boundary flux)| where the method tracks the flux, else NaN
     reference : "cell averages" or "point values" -- what the numerical P0 was compared with
+    elastic_area_error, plastic_area_error, noncontact_area_error : |A_el - exact|, |A_pl - exact|,
+        |A_non - exact| (with a hardness wall; else None)
     """
 
     zeta: np.ndarray
@@ -55,6 +63,9 @@ class Comparison:
     mass_balance: np.ndarray
     reference: str
     stderr_area: np.ndarray | None = None
+    elastic_area_error: np.ndarray | None = None
+    plastic_area_error: np.ndarray | None = None
+    noncontact_area_error: np.ndarray | None = None
 
     @property
     def max_L1(self) -> float:
@@ -78,12 +89,17 @@ class Comparison:
 
     def final(self) -> dict:
         """Worst case over loads at the last station, as plain floats."""
-        return {
+        out = {
             "L1": float(np.max(self.L1[-1])),
             "Linf": float(np.max(self.Linf[-1])),
             "area_error": float(np.max(self.area_error[-1])),
             "load_drift": float(np.max(self.load_drift[-1])),
         }
+        if self.plastic_area_error is not None:
+            out["elastic_area_error"] = float(np.max(self.elastic_area_error[-1]))
+            out["plastic_area_error"] = float(np.max(self.plastic_area_error[-1]))
+            out["noncontact_area_error"] = float(np.max(self.noncontact_area_error[-1]))
+        return out
 
     def __str__(self):
         rows = [f"{'zeta':>10} {'L1':>10} {'Linf':>10} {'|dA*|':>10} {'load drift':>10}"]
@@ -93,6 +109,11 @@ class Comparison:
                 f"{np.max(self.area_error[i]):10.3e} {np.max(self.load_drift[i]):10.3e}"
             )
         tail = f"\n(worst over {self.p_bar.size} load(s); reference: {self.reference})"
+        if self.plastic_area_error is not None:
+            tail += (
+                f"\nelastoplastic: max |dA_el| {np.max(self.elastic_area_error):.3e}, "
+                f"|dA_pl| {np.max(self.plastic_area_error):.3e}, |dA_non| {np.max(self.noncontact_area_error):.3e}"
+            )
         z = self.area_z_score
         if z is not None:
             tail += f"\n|dA*| in standard errors (stochastic method): max {np.max(z):.2f}"
@@ -108,11 +129,14 @@ class Solution:
     method : name of the method that produced it
     problem : the :class:`ContactProblem`
     zeta : output stations (dimensionless), shape ``(n_zeta,)``
-    p : grid (pressure), shape ``(n_p,)``: cell centres ("cell") or nodes ("point")
+    p : grid (pressure), shape ``(n_p,)``: cell centres ("cell") or nodes ("point"); shape
+        ``(n_zeta, n_p)`` for a moving yield wall (the grid stretches with sigma_Y(zeta))
     P0_all : P0 (1/pressure), shape ``(n_zeta, n_loads, n_p)``
     weights : quadrature weights of the grid (pressure), ``int f dp ~ weights @ f``
     kind : "cell" (P0 are cell averages) or "point" (P0 are point values)
-    contact_area_all : A* = int P0 dp, shape ``(n_zeta, n_loads)``
+    contact_area_all : A* = int P0 dp (+ A_pl with a hardness wall), shape ``(n_zeta, n_loads)``
+    plastic_area_all : A_pl, the mass absorbed at the yield wall, shape ``(n_zeta, n_loads)``, or None
+    sigma_Y : the hardness at the stations (pressure), shape ``(n_zeta,)``, or None
     contact_area_flux_all : A* from the absorbed flux (FV), or None
     wall_time : seconds spent in the solver (compile time excluded, see ``info``)
     info : grid, steps, rhs calls, options, checks, warnings
@@ -130,6 +154,8 @@ class Solution:
     info: dict = field(default_factory=dict)
     contact_area_flux_all: np.ndarray | None = None
     stderr_area_all: np.ndarray | None = None
+    plastic_area_all: np.ndarray | None = None
+    sigma_Y: np.ndarray | None = None
 
     # -- construction -------------------------------------------------------------------
     @classmethod
@@ -148,8 +174,14 @@ class Solution:
         contact_area_flux=None,
         stderr_area=None,
         check=True,
+        plastic_area=None,
     ):
-        """Assemble a Solution, computing the integrals and checking the invariants."""
+        """Assemble a Solution, computing the integrals and checking the invariants.
+
+        ``contact_area`` is the method's int P0 dp (the elastic area); with a hardness wall the method
+        also hands over ``plastic_area`` (A_pl, the mass absorbed at sigma_Y) and the Solution's
+        ``contact_area`` is their sum.  ``p`` and ``weights`` may have a leading station axis (moving wall).
+        """
         zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
         P0 = np.asarray(P0, dtype=float).reshape(zeta.size, problem.n_loads, -1)
         if not np.all(np.isfinite(P0)):
@@ -159,8 +191,15 @@ class Solution:
             )
         weights = np.asarray(weights, dtype=float)
         if contact_area is None:
-            contact_area = P0 @ weights
+            contact_area = np.sum(P0 * _station_axis(weights), axis=-1)
         contact_area = np.asarray(contact_area, dtype=float).reshape(zeta.size, problem.n_loads)
+        sigma_Y = None
+        if problem.hardness is not None:
+            sigma_Y = np.atleast_1d(problem.hardness.sigma(zeta)).astype(float)
+            if plastic_area is None:
+                plastic_area = np.zeros_like(contact_area)
+            plastic_area = np.asarray(plastic_area, dtype=float).reshape(zeta.size, problem.n_loads)
+            contact_area = contact_area + plastic_area
         info = dict(info or {})
         sol = cls(
             method=method,
@@ -177,6 +216,8 @@ class Solution:
             if contact_area_flux is None
             else np.asarray(contact_area_flux, float).reshape(zeta.size, problem.n_loads),
             stderr_area_all=None if stderr_area is None else np.asarray(stderr_area, float).reshape(zeta.size, -1),
+            plastic_area_all=plastic_area,
+            sigma_Y=sigma_Y,
         )
         if check:
             sol._check()
@@ -228,19 +269,69 @@ class Solution:
         """A* from 1 minus the flux absorbed at p = 0 (finite volume only), else None."""
         return None if self.contact_area_flux_all is None else self._squeeze(self.contact_area_flux_all)
 
+    def _moment(self, k: int) -> np.ndarray:
+        """int p^k P0 dp on the grid, shape (n_zeta, n_loads)."""
+        w = _station_axis(self.weights * self.p**k)
+        return np.sum(self.P0_all * w, axis=-1)
+
+    @property
+    def elastic_area_all(self) -> np.ndarray:
+        """A_el = int P0 dp, shape (n_zeta, n_loads) (= contact_area_all without a hardness)."""
+        if self.plastic_area_all is None:
+            return self.contact_area_all
+        return self.contact_area_all - self.plastic_area_all
+
+    @property
+    def elastic_area(self) -> np.ndarray:
+        """A_el = int_0^sigma_Y P0 dp: the elastically loaded fraction of the nominal area."""
+        return self._squeeze(self.elastic_area_all)
+
+    @property
+    def plastic_area(self) -> np.ndarray:
+        """A_pl: the fraction in plastic contact (absorbed at the yield wall); 0 without a hardness."""
+        pa = np.zeros_like(self.contact_area_all) if self.plastic_area_all is None else self.plastic_area_all
+        return self._squeeze(pa)
+
+    @property
+    def noncontact_area(self) -> np.ndarray:
+        """A_non = 1 - A_el - A_pl: the fraction out of contact (the atom at p = 0)."""
+        return self._squeeze(1.0 - self.contact_area_all)
+
+    @property
+    def elastic_load_all(self) -> np.ndarray:
+        return self._moment(1)
+
+    @property
+    def elastic_load(self) -> np.ndarray:
+        """F_el = int p P0 dp (pressure)."""
+        return self._squeeze(self.elastic_load_all)
+
+    @property
+    def plastic_load(self) -> np.ndarray:
+        """F_pl = sigma_Y A_pl (pressure); 0 without a hardness."""
+        if self.plastic_area_all is None:
+            return self._squeeze(np.zeros_like(self.contact_area_all))
+        return self._squeeze(self.sigma_Y[:, None] * self.plastic_area_all)
+
     @property
     def load_all(self) -> np.ndarray:
-        return self.P0_all @ (self.weights * self.p)
+        load = self._moment(1)
+        if self.plastic_area_all is not None:
+            load = load + self.sigma_Y[:, None] * self.plastic_area_all
+        return load
 
     @property
     def load(self) -> np.ndarray:
-        """int p P0 dp at each station (pressure); equals p_bar exactly in theory (``eq:Load_equilibrium``)."""
+        """F_el + F_pl at each station (pressure); equals p_bar exactly in theory (``eq:Load_equilibrium``)."""
         return self._squeeze(self.load_all)
 
     @property
     def variance(self) -> np.ndarray:
-        """Var(p) = int p^2 P0 dp - p_bar^2 (atom at 0 included), pressure^2."""
-        return self._squeeze(self.P0_all @ (self.weights * self.p**2) - self.problem.p_bar**2)
+        """Var(p) = <p^2> - p_bar^2 (pressure^2), atoms at 0 and (with a hardness) at sigma_Y included."""
+        m2 = self._moment(2)
+        if self.plastic_area_all is not None:
+            m2 = m2 + self.sigma_Y[:, None] ** 2 * self.plastic_area_all
+        return self._squeeze(m2 - self.problem.p_bar**2)
 
     @property
     def steps(self):
@@ -262,9 +353,19 @@ class Solution:
         return np.asarray(out).reshape(self.zeta.size, self.problem.n_loads, -1)
 
     def compare(self) -> Comparison:
-        """Errors against :func:`persson_fp.exact` at every station (see :class:`Comparison`)."""
+        """Errors against :func:`persson_fp.exact` at every station (see :class:`Comparison`).
+
+        A scale-dependent hardness (moving yield wall) has no closed form: then a ``ValueError``
+        points to ``info["error_estimate"]``, the solver's own estimate.
+        """
+        if self.problem.moving_wall:
+            raise ValueError(
+                "compare(): a scale-dependent hardness has no exact solution to compare with; the solver's own "
+                "error estimate is in info['error_estimate'] (and the conservation residuals in info['checks'])"
+            )
         ex = exact(self.problem.with_loads(self.problem.p_bar), self.zeta)
-        A_ex = np.asarray(ex.contact_area).reshape(self.zeta.size, self.problem.n_loads)
+        shape = (self.zeta.size, self.problem.n_loads)
+        A_ex = np.asarray(ex.contact_area).reshape(shape)
         diff = self.P0_all - self.exact_on_grid()
         L1 = np.abs(diff) @ self.weights
         Linf = np.max(np.abs(diff), axis=-1)
@@ -274,6 +375,15 @@ class Solution:
             mb = np.abs(self.contact_area_all - self.contact_area_flux_all)
         else:
             mb = np.full_like(dA, np.nan)
+        hard = {}
+        if self.plastic_area_all is not None:
+            hard = {
+                "elastic_area_error": np.abs(self.elastic_area_all - np.asarray(ex.elastic_area).reshape(shape)),
+                "plastic_area_error": np.abs(self.plastic_area_all - np.asarray(ex.plastic_area).reshape(shape)),
+                "noncontact_area_error": np.abs(
+                    (1.0 - self.contact_area_all) - np.asarray(ex.noncontact_area).reshape(shape)
+                ),
+            }
         return Comparison(
             zeta=self.zeta,
             p_bar=self.problem.p_bar,
@@ -284,6 +394,7 @@ class Solution:
             mass_balance=mb,
             reference="cell averages" if self.kind == "cell" else "point values",
             stderr_area=self.stderr_area_all,
+            **hard,
         )
 
     def summary(self) -> str:

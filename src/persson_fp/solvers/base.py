@@ -87,6 +87,8 @@ class SolverOutput:
     contact_area: np.ndarray | None = None
     contact_area_flux: np.ndarray | None = None
     stderr_area: np.ndarray | None = None
+    plastic_area: np.ndarray | None = None
+    """A_pl at the stations, (n_zeta_out, n_loads), for a problem with a hardness wall."""
 
 
 class Solver:
@@ -313,4 +315,5 @@ class Solver:
             contact_area=out.contact_area,
             contact_area_flux=out.contact_area_flux,
             stderr_area=out.stderr_area,
+            plastic_area=out.plastic_area,
         )

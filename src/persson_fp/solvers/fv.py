@@ -519,8 +519,13 @@ class FiniteVolumeSolver(Solver):
     # -- set-up --------------------------------------------------------------------------------
     def _start(self):
         """(zeta0, V0, P_init (n_loads, n_p), A_init (n_loads,)) on the grid ``self.edges``."""
+        pr = self.problem
         z0, V0, P, A = self.initial_cell_averages(self.edges)
-        self._tau0 = np.asarray(self.problem.tau_of_V(V0), dtype=float).reshape(self.problem.n_loads)
+        self._tau0 = np.asarray(pr.tau_of_V(V0), dtype=float).reshape(pr.n_loads)
+        self._hard = pr.hardness is not None
+        self._A_pl0 = np.zeros(pr.n_loads)
+        if self._hard and self.opts["initial"] == "exact":  # the yield wall may have absorbed a little already
+            self._A_pl0 = np.asarray(self.exact_at(z0).plastic_area, dtype=float).reshape(pr.n_loads)
         return z0, V0, P, A
 
     def _zeta_of_V(self, V) -> float:
@@ -618,6 +623,7 @@ class FiniteVolumeSolver(Solver):
                     "scheme='tr-bdf2' / 'implicit' (or pass allow_unstable=True)"
                 )
 
+        P_far0 = P[:, -1].copy()
         if linalg == "dst":
             res = self._march_dst(P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge)
         else:
@@ -625,7 +631,10 @@ class FiniteVolumeSolver(Solver):
         P_out, A_out, Af_out = res["P_out"], res["A_out"], res["Af_out"]
         JN, r_max, dtau_total = res["JN"], res["r_max"], res["dtau_total"]
 
-        tail = tail_mass(p_max, pr.p_bar, self.tau_out[-1])
+        if pr.hardness is None:
+            tail = tail_mass(p_max, pr.p_bar, self.tau_out[-1])
+        else:  # the far wall is the yield wall: what it absorbs is the plastic area, not a loss
+            tail = np.zeros(1)
         info = {
             "grid": {"n_p": N, "p_max": p_max, "dp": dp},
             "edges": self.edges,
@@ -637,7 +646,7 @@ class FiniteVolumeSolver(Solver):
             "order_tau": scheme.order,
             **res["counters"],
             "r_max": r_max,
-            "far_wall_mass": float(np.max(JN)),
+            "far_wall_mass": 0.0 if pr.hardness is not None else float(np.max(JN)),
             "tail_mass_exact": float(np.max(np.abs(tail))),
             "tau_numerical": dtau_total + (0.0 if o["initial"] == "delta" else self._tau0),
             "k_domain": o["k_domain"],
@@ -652,6 +661,11 @@ class FiniteVolumeSolver(Solver):
             info=info,
             contact_area=A_out,
             contact_area_flux=Af_out,
+            # A_pl: the flux absorbed at the yield wall plus the compact scheme's edge term of that wall (so that
+            # A_el + A_pl + A_non is conserved to round-off; 0 for fv2)
+            plastic_area=None
+            if pr.hardness is None
+            else self._A_pl0 + res["JN_out"] - w_edge * dp * (P_out[:, :, -1] - P_far0),
         )
 
     # -- the reference march: tridiagonal solves in p -------------------------------------------
@@ -675,6 +689,8 @@ class FiniteVolumeSolver(Solver):
         P_out = np.empty((self.zeta_out.size, m, N))
         A_out = np.empty((self.zeta_out.size, m))
         Af_out = np.empty((self.zeta_out.size, m))
+        JN_out = np.empty((self.zeta_out.size, m))
+        hard, A_pl0 = self._hard, self._A_pl0
         sup0 = np.max(np.abs(P), axis=-1)
         # the checks watch the conserved sum(M P) dp (= A* - w_edge dp (P_0 + P_-1)): with the compact mass
         # matrix A* itself may rise a little while the wall cells change fast (a delta start), stably
@@ -722,19 +738,20 @@ class FiniteVolumeSolver(Solver):
                 dtau = dV.copy()
                 if dtau_prev is not None and np.all(np.abs(dtau - dtau_prev) <= 1e-12 * dtau):
                     dtau = dtau_prev  # uniform steps: keep the factorisation (a 1e-12 relative shift)
-            else:
-                Sn = S(mass)
+            else:  # S at the contact area: A_el (+ A_pl with a hardness wall)
+                total = mass + (A_pl0 + JN if hard else 0.0)
+                Sn = S(np.minimum(total, 1.0))
                 if coupling == "lagged":
                     dtau = Sn * dV
                 else:
-                    b = (P[:, 0] + P[:, -1]) / dp
-                    A_pred = np.clip(mass - dV * Sn * b, 0.0, 1.0)
+                    b = (P[:, 0] + (0.0 if hard else P[:, -1])) / dp
+                    A_pred = np.clip(total - dV * Sn * b, 0.0, 1.0)
                     dtau = 0.5 * dV * (Sn + S(A_pred))
             Pn, dJ0, dJN = step(P, dtau, n)
             if coupling == "picard" and not no_fudge:
                 for _ in range(o["picard_maxiter"]):
                     picard_iters += 1
-                    new_mass = mass - dJ0 - dJN
+                    new_mass = np.clip(total - dJ0 - (0.0 if hard else dJN), 0.0, 1.0)
                     dtau_new = 0.5 * dV * (Sn + S(new_mass))
                     if np.max(np.abs(dtau_new - dtau)) <= o["picard_tol"] * np.max(dtau):
                         dtau = dtau_new
@@ -773,11 +790,13 @@ class FiniteVolumeSolver(Solver):
                 P_out[st] = P
                 A_out[st] = mass
                 Af_out[st] = A0 - J0 + w_edge * dp * (P[:, 0] - P_edge0)
+                JN_out[st] = JN
                 st += 1
         return {
             "P_out": P_out,
             "A_out": A_out,
             "Af_out": Af_out,
+            "JN_out": JN_out,
             "JN": JN,
             "r_max": r_max,
             "dtau_total": dtau_total,
@@ -957,11 +976,13 @@ class FiniteVolumeSolver(Solver):
         A_out = C_st @ fun[:, 0]
         J0 = contract(C0 * fun[:, 1], H[K])  # (n_st, m)
         Af_out = A0 - J0 + w_edge * dp * (P_out[:, :, 0] - P_edge0)
+        JN_out = contract(C0 * fun[:, 2], H[K])  # (n_st, m): the plastic area gained (with a hardness wall)
         JN = contract(C0 * fun[:, 2], H[-1:])[0]
         return {
             "P_out": P_out,
             "A_out": A_out,
             "Af_out": Af_out,
+            "JN_out": JN_out,
             "JN": JN,
             "r_max": r_max,
             "dtau_total": np.broadcast_to(dts.sum(axis=0), (m,)).copy(),
@@ -996,6 +1017,8 @@ class FiniteVolumeSolver(Solver):
         P_out = np.empty((self.zeta_out.size, m, N))
         A_out = np.empty((self.zeta_out.size, m))
         Af_out = np.empty((self.zeta_out.size, m))
+        JN_out = np.empty((self.zeta_out.size, m))
+        hard, A_pl0 = self._hard, self._A_pl0
         too_big = (
             "explicit scheme: r = dtau/(2 dp^2) = {:.4g} exceeds the stability limit {:.4g} "
             "(the fudge factor enlarged dtau); raise n_steps or use an implicit scheme"
@@ -1015,6 +1038,7 @@ class FiniteVolumeSolver(Solver):
             return self._dst_closed(sp, C0, P_edge0, A0, dts[:, None], V_nodes, station_idx, theta, r_limit, w_edge)
         if (
             not no_fudge
+            and not hard
             and coupling != "picard"
             and n_steps >= _TRAJECTORY_MIN_STEPS
             and m <= _fudge_trajectory_max_loads
@@ -1067,18 +1091,20 @@ class FiniteVolumeSolver(Solver):
                 dtau = dV.copy()
                 if dtau_prev is not None and np.all(np.abs(dtau - dtau_prev) <= 1e-12 * dtau):
                     dtau = dtau_prev
-            else:
-                Sn = S(mass)
+            else:  # S at the contact area: A_el (+ A_pl with a hardness wall, which keeps what it absorbs)
+                total = mass + (A_pl0 + JN if hard else 0.0)
+                loss = b0 if hard else b0 + bN
+                Sn = S(np.minimum(total, 1.0))
                 if coupling == "lagged":
                     dtau = Sn * dV
                 else:
-                    A_pred = np.minimum(np.maximum(mass - dV * Sn * (b0 + bN), 0.0), 1.0)
+                    A_pred = np.minimum(np.maximum(total - dV * Sn * loss, 0.0), 1.0)
                     dtau = 0.5 * dV * (Sn + S(A_pred))
             Cn, dJ0, dJN = step(C, dtau, n)
             if coupling == "picard" and not no_fudge:
                 for _ in range(o["picard_maxiter"]):
                     picard_iters += 1
-                    dtau_new = 0.5 * dV * (Sn + S(mass - dJ0 - dJN))
+                    dtau_new = 0.5 * dV * (Sn + S(np.clip(total - dJ0 - (0.0 if hard else dJN), 0.0, 1.0)))
                     if np.max(np.abs(dtau_new - dtau)) <= o["picard_tol"] * np.max(dtau):
                         dtau = dtau_new
                         break
@@ -1107,11 +1133,13 @@ class FiniteVolumeSolver(Solver):
                     P_out[st] = Pst
                     A_out[st] = mass
                     Af_out[st] = A0 - J0 + w_edge * dp * (Pst[:, 0] - P_edge0)
+                    JN_out[st] = JN
                     st += 1
         return {
             "P_out": P_out,
             "A_out": A_out,
             "Af_out": Af_out,
+            "JN_out": JN_out,
             "JN": JN,
             "r_max": r_max,
             "dtau_total": dtau_total,
