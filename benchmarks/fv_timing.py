@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 import persson_fp as pf
-import persson_fp.solvers.fv as fv_module
+import persson_fp.solvers.fv_spectral as fv_spectral
 
 CASES = [
     # (fudge, scheme, space, stepping, n_p, n_steps)
@@ -107,13 +107,13 @@ def main(repeats: int = 7) -> None:
         pr = base.with_loads(np.sqrt(float(base.V())) * np.geomspace(0.05, 3.0, m))
         times = {}
         for label, size in (("trajectory", 10**12), ("step march", 0)):
-            saved = (fv_module._TRAJECTORY_SIZE, fv_module._fudge_trajectory_max_loads)
-            fv_module._TRAJECTORY_SIZE, fv_module._fudge_trajectory_max_loads = size, m
+            saved = (fv_spectral._TRAJECTORY_SIZE, fv_spectral._fudge_trajectory_max_loads)
+            fv_spectral._TRAJECTORY_SIZE, fv_spectral._fudge_trajectory_max_loads = size, m
             try:
                 pf.solve(pr, "fv", n_p=200, n_steps=100)  # warm-up
                 times[label] = median_time(lambda pr=pr: pf.solve(pr, "fv", n_p=200, n_steps=100), repeats)[0]
             finally:
-                fv_module._TRAJECTORY_SIZE, fv_module._fudge_trajectory_max_loads = saved
+                fv_spectral._TRAJECTORY_SIZE, fv_spectral._fudge_trajectory_max_loads = saved
         print(
             f"YP08 {m:2d} load(s), n_p=200, 100 steps: trajectory {times['trajectory'] * 1e3:.2f} ms, "
             f"step march {times['step march'] * 1e3:.2f} ms"
