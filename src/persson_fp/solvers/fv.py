@@ -87,6 +87,7 @@ import numpy as np
 from ..exact import tail_mass
 from ..fudge import NoFudge
 from ..solution import InstabilityError
+from . import moving_wall
 from .base import Solver, SolverOutput, check_float, check_int
 from .fv_operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
     _BDF2_A,
@@ -180,6 +181,10 @@ class FiniteVolumeSolver(SpectralPath, Solver):
     check_every : int, default 10
         Steps between stability checks (NaN, mass growth, max |P0| growth; the l2 norm of P0 on the
         "dst" path).
+    tol : float, optional
+        Moving yield wall (a scale-dependent hardness) only: raise :class:`~persson_fp.SolverError` when the
+        Richardson error estimate of the areas or the load residual exceeds ``tol`` (the estimate is always in
+        ``info["error_estimate"]``).
     linalg : str, default "auto"
         "dst": the spectral fast path (the same discrete solution to round-off, see the module
         docstring); "banded": the tridiagonal solves (readable reference); "auto": "dst" whenever
@@ -204,6 +209,7 @@ class FiniteVolumeSolver(SpectralPath, Solver):
         "allow_unstable": False,
         "check_every": 10,
         "linalg": "auto",
+        "tol": None,
     }
 
     def validate(self) -> None:
@@ -224,6 +230,8 @@ class FiniteVolumeSolver(SpectralPath, Solver):
         o["picard_maxiter"] = check_int(o["picard_maxiter"], "picard_maxiter", 1)
         o["rannacher_steps"] = check_int(o["rannacher_steps"], "rannacher_steps", 0)
         o["check_every"] = check_int(o["check_every"], "check_every", 1)
+        if o["tol"] is not None:
+            o["tol"] = check_float(o["tol"], "tol", 0.0, 1.0)
         self.validate_start_options()
 
     # -- set-up --------------------------------------------------------------------------------
@@ -302,6 +310,8 @@ class FiniteVolumeSolver(SpectralPath, Solver):
     # -- the run ---------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
+        if pr.moving_wall:  # the general engine: front-fixed moving yield wall (persson_fp.solvers.moving_wall)
+            return self._solve_moving_wall()
         scheme = SCHEMES[o["scheme"]]
         coupling = scheme.coupling if o["coupling"] == "auto" else o["coupling"]
         no_fudge = isinstance(pr.fudge, NoFudge)
@@ -518,6 +528,17 @@ class FiniteVolumeSolver(SpectralPath, Solver):
                 "trajectory_sweeps": 0,
             },
         }
+
+    def _solve_moving_wall(self) -> SolverOutput:
+        o = self.opts
+        if o["scheme"] == "explicit":
+            raise ValueError("scheme='explicit' is not offered for a moving yield wall; use 'tr-bdf2' (default)")
+        scheme = "crank-nicolson" if o["scheme"] == "rannacher" else o["scheme"]
+        coupling = "predictor" if o["coupling"] in ("auto", "picard") else o["coupling"]
+        damped = o["rannacher_steps"] if o["scheme"] in ("rannacher", "tr-bdf2") else 0
+        return moving_wall.solve_cells(
+            self, o["n_p"], o["n_steps"], scheme, coupling, damped, o["tau0_fraction"], o["tol"], o["zeta0"]
+        )
 
     # -- start-up steps shared by the banded and the spectral march -------------------------------------
     def _damped_steps(self) -> int:

@@ -1,0 +1,308 @@
+r"""A scale-dependent hardness: the moving yield wall, front-fixed onto the general engine.
+
+The physics (Persson, Phys. Rev. Lett. 87 (2001) 116101; Surf. Sci. Rep. 61 (2006) 201, Sec. 3).  On
+:math:`0 < p < \sigma_Y(\zeta)` the PDF obeys :math:`\partial_\tau P = \tfrac12\partial_p^2 P` in the effective
+variance :math:`d\tau = S(A)\,dV` (A = A_el + A_pl, the total contact area), absorbing at p = 0.  Where the wall
+moves (:math:`\sigma_Y' > 0`) the PDF does not vanish at it: area balance gives
+:math:`dA_{pl}/d\tau = -\dot\sigma P(\sigma_Y) - \tfrac12\partial_pP(\sigma_Y)` and the load balance
+:math:`F_{el} + \sigma_Y A_{pl} = \bar p` then requires :math:`P(\sigma_Y) = 2\dot\sigma A_{pl}`
+(:math:`\dot\sigma = d\sigma_Y/d\tau`): the plastic area sits at the wall and is handed back into the elastic
+domain as the wall moves out.  No closed form exists.
+
+*Front fixing.*  With :math:`x = p/s`, :math:`s(\tau) = \sigma_Y(\zeta(\tau))` and the mass density in x,
+:math:`w(x, \tau) = s\,P(sx, \tau)`, the domain is fixed, :math:`x \in [0, 1]`, and the equation is conservative:
+
+.. math::  \partial_\tau w = \partial_x\Big(\frac{1}{2s^2}\partial_x w + \frac{\dot s}{s}\,x\,w\Big),
+           \qquad w(0) = 0, \qquad w(1) = 2 s\dot s\,A_{pl}, \qquad \frac{dA_{pl}}{d\tau} = G(1),
+
+G being the flux through x = 1: exactly the engine's yield wall (:mod:`persson_fp.solvers.engine`) with
+:math:`\beta = 2s\dot s`.  The independent variable is V (known in closed form along the spectrum), so with
+:math:`d\tau = S\,dV`: :math:`D = S/(2s^2)`, :math:`v = (s_V/s)\,x`, :math:`\beta = 2 s s_V / S`,
+:math:`s_V = \sigma_Y'(\zeta)/V'(\zeta)`.  Second order in x and V on a fixed grid, no cut cells; the areas balance
+to round-off; the load balance is met to the discretisation error (reported).
+
+*Start.*  At a small :math:`\zeta_0` the PDF has not reached the wall; the start is the strip solution at
+:math:`\sigma_Y(\zeta_0)` and the elastic effective variance (its plastic area, ~0, is reported as
+``start_plastic_area``).
+
+*Error estimate.*  No closed form, so each run is paired with one at half the cells and half the steps;
+the Richardson estimate of the fine run's error is :math:`|Q_h - Q_{2h}|/3` for every area and load at every
+station (``info["error_estimate"]``); the observed order is measured in the tests and in
+``benchmarks/plasticity.py``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..fudge import NoFudge
+from ..problem import ContactProblem
+from ..solution import SolverError
+from ..strip import strip_cdf, strip_quantities
+from . import engine
+
+__all__ = ["MovingWall", "richardson"]
+
+_GRADE = 0.05
+"""Steps uniform in u = V + _GRADE V_end ln V (geometric while V is small, then uniform)."""
+
+
+class MovingWall:
+    """The front-fixed moving-wall problem on ``n`` cells in x for every load of ``problem``.
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        With a hardness (constant or not: a constant one gives beta = 0, the strip).
+    n : int
+        Cells in x = p / sigma_Y.
+    """
+
+    def __init__(self, problem: ContactProblem, n: int):
+        self.problem = problem
+        self.n = n
+        self.h = 1.0 / n
+        self.x_faces = np.linspace(0.0, 1.0, n + 1)
+        self.x = 0.5 * (self.x_faces[1:] + self.x_faces[:-1])
+        self.no_fudge = isinstance(problem.fudge, NoFudge)
+        self.elastic = ContactProblem(problem.psd, problem.E_star, problem.p_bar, problem.fudge)
+        self._cache = {}
+
+    # -- the wall along V --------------------------------------------------------------------------------
+    def zeta(self, V):
+        pr = self.problem
+        return np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))
+
+    def wall_many(self, V):
+        """(s, s_V) arrays at complete-contact variances V: sigma_Y and d sigma_Y / dV (pressure, 1/pressure)."""
+        pr = self.problem
+        z = self.zeta(V)
+        s = pr.hardness.sigma(z)
+        dV = pr.dV_dzeta(z)
+        sV = np.where(dV > 0, pr.hardness.dsigma_dzeta(z) / np.where(dV > 0, dV, 1.0), 0.0)
+        return s, sV
+
+    def wall(self, V):
+        """(s, s_V) at one V, from the cache that :meth:`prefill` fills (vectorised) for a march's stage times."""
+        hit = self._cache.get(V)
+        if hit is None:
+            s, sV = self.wall_many(np.array([V]))
+            hit = self._cache[V] = (float(s[0]), float(sV[0]))
+        return hit
+
+    def prefill(self, V_nodes):
+        """Evaluate the wall at every stage time of a march over ``V_nodes`` at once (the engine's expressions)."""
+        t, dt = V_nodes[:-1], np.diff(V_nodes)
+        pts = np.concatenate([V_nodes, t + engine.GAMMA * dt, t + dt, t + 0.5 * dt, (t + 0.5 * dt) + 0.5 * dt])
+        s, sV = self.wall_many(pts)
+        self._cache.update(zip(pts.tolist(), zip(s.tolist(), sV.tolist())))
+
+    def coefficients(self, V, S_bar):
+        """Engine coefficients at V with the fudge factor frozen at ``S_bar`` (m,)."""
+        s, sV = self.wall(V)
+        m = self.problem.n_loads
+        S_bar = np.broadcast_to(np.asarray(S_bar, dtype=float), (m,))
+        D = (S_bar / (2.0 * s * s))[:, None] * np.ones(self.n + 1)
+        v = np.broadcast_to((sV / s) * self.x_faces, (m, self.n + 1))
+        return engine.Coefficients(D=D, v=v, beta=2.0 * s * sV / S_bar)
+
+    # -- start, nodes -----------------------------------------------------------------------------------
+    def start(self, V0):
+        """The state y0 (m, n + 1) at V0: the strip's cell averages at sigma_Y(zeta(V0)) and the elastic tau."""
+        pr = self.problem
+        s0, _ = self.wall(V0)
+        tau0 = np.asarray(self.elastic.tau_of_V(np.array([V0])), dtype=float).reshape(pr.n_loads)
+        edges = s0 * self.x_faces
+        F = strip_cdf(edges[None, :], pr.p_bar[:, None], s0, tau0[:, None])
+        q = strip_quantities(pr.p_bar, s0, tau0)
+        y0 = np.empty((pr.n_loads, self.n + 1))
+        y0[:, :-1] = np.diff(F, axis=-1) / self.h  # w = s P: its cell average in x is the p-cell mass / h
+        y0[:, -1] = q["plastic_area"]
+        return y0, q["noncontact_area"], q["plastic_area"]
+
+    def choose_V0(self, V_first: float, tau0_fraction: float):
+        """Start where sqrt(tau) spans ~3 cells of the wall's grid, at most ``tau0_fraction`` of the first
+        station's V (in V; tau ~ S(1) V there)."""
+        s1, _ = self.wall(V_first)
+        target = max(9.0 * (s1 * self.h) ** 2, 1e-6 * V_first)
+        return float(min(target, tau0_fraction * V_first))
+
+    @staticmethod
+    def nodes(V0: float, V_st: np.ndarray, n_steps: int):
+        """V nodes from V0 through every station (graded, see ``_GRADE``) and the station indices."""
+        V_all = np.concatenate(([V0], V_st))
+        g = _GRADE * V_all[-1]
+        u = V_all + g * np.log(V_all)
+        counts = np.maximum(1, np.round(n_steps * np.diff(u) / (u[-1] - u[0])).astype(int))
+        pieces, idx = [np.array([V0])], []
+        for i in range(V_st.size):
+            uu = np.linspace(u[i], u[i + 1], counts[i] + 1)[1:]
+            Vg = np.geomspace(V_all[i], V_all[i + 1], 2049)
+            ug = Vg + g * np.log(Vg)
+            seg = np.interp(uu, ug, Vg)
+            seg[-1] = V_all[i + 1]
+            pieces.append(seg)
+            idx.append(sum(len(p) for p in pieces) - 1)
+        return np.concatenate(pieces), np.array(idx)
+
+    # -- the march --------------------------------------------------------------------------------------
+    def solve(
+        self,
+        V_st,
+        n_steps: int,
+        scheme: str = "tr-bdf2",
+        coupling: str = "predictor",
+        damped: int = 2,
+        tau0_fraction: float = 0.05,
+        V0: float | None = None,
+    ):
+        """March from the start (at ``V0``, default :meth:`choose_V0`) through the stations ``V_st``;
+        a dict of per-station arrays."""
+        pr = self.problem
+        S = pr.fudge.S
+        m, h = pr.n_loads, self.h
+        if V0 is None:
+            V0 = self.choose_V0(float(V_st[0]), tau0_fraction)
+        y, A_non0, A_pl0 = self.start(V0)
+        V_nodes, st_idx = self.nodes(V0, np.asarray(V_st, dtype=float), n_steps)
+        self.prefill(V_nodes)
+        n_st = len(V_st)
+        W = np.empty((n_st, m, self.n))
+        A_pl = np.empty((n_st, m))
+        A_non = np.empty((n_st, m))
+        s_st = np.empty(n_st)
+        absorbed = np.zeros(m)
+        peclet = 0.0
+        k_st = 0
+        for k in range(V_nodes.size - 1):
+            Va, Vb = V_nodes[k], V_nodes[k + 1]
+            dV = Vb - Va
+            if self.no_fudge:
+                S_bar = np.ones(m)
+            else:  # S at the total contact area A_el + A_pl = 1 - A_non
+                A_now = np.clip(1.0 - A_non0 - absorbed, 0.0, 1.0)
+                Sn = S(A_now)
+                if coupling == "lagged":
+                    S_bar = Sn
+                else:
+                    out_rate = engine.outflux_low(self.coefficients(Va, np.ones(m)), y, h)  # per unit tau
+                    S_bar = 0.5 * (Sn + S(np.clip(A_now - dV * Sn * out_rate, 0.0, 1.0)))
+            coef = lambda V, S_bar=S_bar: self.coefficients(V, S_bar)  # noqa: E731
+            y, j = engine.step(coef, Va, dV, y, h, "be-halves" if k < damped else scheme)
+            absorbed += j
+            c = coef(Vb)
+            peclet = max(peclet, float(np.max(np.abs(c.v[:, -1]) * h / np.max(c.D))))
+            if not np.all(np.isfinite(y)):
+                raise SolverError(f"moving wall: non-finite values at V = {Vb:.6g}; raise n_steps")
+            while k_st < n_st and k + 1 == st_idx[k_st]:
+                W[k_st] = y[:, :-1]
+                A_pl[k_st] = y[:, -1]
+                A_non[k_st] = A_non0 + absorbed
+                s_st[k_st] = self.wall(Vb)[0]
+                k_st += 1
+        A_el = W.sum(axis=-1) * h
+        F_el = s_st[:, None] * (W @ self.x) * h
+        return {
+            "W": W,
+            "s": s_st,
+            "elastic_area": A_el,
+            "plastic_area": A_pl,
+            "noncontact_area": A_non,
+            "elastic_load": F_el,
+            "plastic_load": s_st[:, None] * A_pl,
+            "V0": V0,
+            "zeta0": float(self.zeta(V0)[0]),
+            "start_plastic_area": float(np.max(A_pl0)),
+            "steps": V_nodes.size - 1,
+            "max_cell_peclet": peclet,
+        }
+
+
+def check_resolved(problem, V_st, n: int, zeta_st) -> None:
+    """``ValueError`` unless the PDF spans at least one cell of the stretched grid at every station:
+    sqrt(tau) >= sigma_Y / n, tau taken as S(1) V (its largest value before contact is lost)."""
+    mw = MovingWall(problem, n)
+    s, _ = mw.wall_many(V_st)
+    S1 = float(problem.fudge.S(np.array(1.0)))
+    need = s / n
+    have = np.sqrt(S1 * V_st)
+    bad = have < need
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ValueError(
+            f"moving wall: the PDF at zeta = {zeta_st[i]:.6g} (width sqrt(tau) ~ {have[i]:.3e}) is narrower than "
+            f"one cell of the grid on [0, sigma_Y] = [0, {s[i]:.4g}] with n_p = {n}; raise n_p to >= "
+            f"{int(np.ceil(n * float(np.max(need / have))))} or start zeta_out later"
+        )
+
+
+_QUANTITIES = ("elastic_area", "plastic_area", "noncontact_area", "elastic_load", "plastic_load")
+
+
+def richardson(fine: dict, coarse: dict, order: float = 2.0) -> dict:
+    """Richardson estimate of the fine run's error, |Q_h - Q_2h| / (2^order - 1), per quantity (n_st, m)."""
+    f = 2.0**order - 1.0
+    return {q: np.abs(fine[q] - coarse[q]) / f for q in _QUANTITIES}
+
+
+def solve_cells(
+    solver, n: int, n_steps: int, scheme: str, coupling: str, damped: int, tau0_fraction: float, tol, zeta0=None
+):
+    """The moving-wall run of a cell method (``"fv"``): the run at (n, n_steps), its Richardson partner at
+    (n/2, n_steps/2), the checks, and the :class:`~persson_fp.solvers.base.SolverOutput`."""
+    from .base import SolverOutput
+
+    pr = solver.problem
+    V_st = np.asarray(solver.V_out, dtype=float)
+    check_resolved(pr, V_st, n, solver.zeta_out)
+    V0 = None if zeta0 is None else float(pr.V(zeta0))
+    if V0 is not None and V0 <= 0.0:
+        raise ValueError("zeta0 must be > 1 for a moving yield wall (the start is the PDF at zeta0, not the delta)")
+    fine = MovingWall(pr, n).solve(V_st, n_steps, scheme, coupling, damped, tau0_fraction, V0)
+    coarse = MovingWall(pr, max(n // 2, 4)).solve(
+        V_st, max(n_steps // 2, 2), scheme, coupling, damped, tau0_fraction, fine["V0"]
+    )
+    est = richardson(fine, coarse, order=1.0)  # conservative: exact for first order, 3x over at second
+    area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
+    area_residual = float(np.max(np.abs(area_sum - 1.0)))
+    load_residual = float(np.max(np.abs(fine["elastic_load"] + fine["plastic_load"] - pr.p_bar) / pr.p_bar))
+    if area_residual > 1e-10:
+        raise SolverError(
+            f"moving wall: the areas do not sum to 1 (residual {area_residual:.3e}): the conservative scheme broke; "
+            "this is a bug or an unstable step -- raise n_steps"
+        )
+    worst_area = max(float(np.max(est[q])) for q in ("elastic_area", "plastic_area", "noncontact_area"))
+    if tol is not None and (worst_area > tol or load_residual > tol):
+        raise SolverError(
+            f"moving wall: the error estimate {worst_area:.3e} (areas, Richardson) or the load residual "
+            f"{load_residual:.3e} exceeds tol = {tol:.3g}; raise n_p and n_steps (both enter at second order)"
+        )
+    s = fine["s"]
+    p = s[:, None] * MovingWall(pr, n).x[None, :]
+    info = {
+        "grid": {"n_p": n, "mapping": "x = p / sigma_Y(zeta)", "p_max": s},
+        "steps": fine["steps"],
+        "zeta0": fine["zeta0"],
+        "scheme": scheme,
+        "coupling": "exact (S = 1)" if isinstance(pr.fudge, NoFudge) else coupling,
+        "moving_wall": True,
+        "error_estimate": {
+            **{k: v for k, v in est.items()},
+            "method": f"|Q(n_p, n_steps) - Q(n_p/2, n_steps/2)|, n_p = {n}, n_steps = {n_steps} (conservative)",
+            "max_area": worst_area,
+        },
+        "area_residual": area_residual,
+        "load_residual": load_residual,
+        "start_plastic_area": fine["start_plastic_area"],
+        "max_cell_peclet": fine["max_cell_peclet"],
+    }
+    return SolverOutput(
+        p=p,
+        P0=fine["W"] / s[:, None, None],
+        weights=np.broadcast_to((s * (1.0 / n))[:, None], p.shape).copy(),
+        kind="cell",
+        info=info,
+        contact_area=fine["elastic_area"],
+        contact_area_flux=1.0 - fine["noncontact_area"],
+        plastic_area=fine["plastic_area"],
+    )
