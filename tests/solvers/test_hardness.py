@@ -122,3 +122,34 @@ def test_moving_wall_refuses_an_unresolved_grid():
     pr = pf.ContactProblem(psd, p_bar=0.3, hardness=pf.hardness.PowerLaw(1.0, 0.2))
     with pytest.raises(ValueError, match="raise n_p to"):
         pf.solve(pr, method="fv", n_p=50, zeta_out=np.geomspace(10, 1e16, 4))
+
+
+@pytest.mark.parametrize("fudge", [None, "YP08"])
+def test_sines_constant_hardness_is_the_strip_series(fudge):
+    """On [0, sigma_Y] the sine series is the strip's exact solution: round-off at tol = 1e-13."""
+    sol = pf.solve(_problem(fudge), method="sines", tol=1e-13, zeta_out=[4.0, 32.0, 128.0])
+    c = sol.compare()
+    assert np.max(c.plastic_area_error) < 1e-13 and np.max(c.elastic_area_error) < 1e-13
+    assert np.max(c.L1) < 1e-12
+
+
+@pytest.mark.parametrize("variable", ["tau", "zeta"])
+@pytest.mark.parametrize("fudge", [None, "YP08"])
+def test_mol_constant_hardness_against_the_strip_series(fudge, variable):
+    """4th-order MOL at its default grid: measured 2.2e-7 .. 5.2e-7 in A_pl (from the load balance) and up to
+    2.2e-6 in A_el (the first station, where the automatic grid is sized for L1 ~ 5e-6)."""
+    sol = pf.solve(_problem(fudge), method="mol", variable=variable, rtol=1e-8, zeta_out=[4.0, 32.0, 128.0])
+    c = sol.compare()
+    assert np.max(c.plastic_area_error) < 1e-6 and np.max(c.elastic_area_error) < 5e-6
+
+
+def test_mol_moving_wall_agrees_with_fv():
+    """Two methods, one physics: mol (BDF on the engine's fluxes) and fv (TR-BDF2) to within their own
+    error estimates (measured difference 2e-7 in A_pl at 200 cells)."""
+    pr = _moving(fudge="YP08", p_bar=np.array([0.1, 0.3]))
+    a = pf.solve(pr, method="mol", rtol=1e-8, zeta_out=[3.0, 10.0])
+    b = pf.solve(pr, method="fv", n_p=200, n_steps=400, zeta_out=[3.0, 10.0])
+    bound = a.info["error_estimate"]["plastic_area"] + b.info["error_estimate"]["plastic_area"]
+    assert np.all(np.abs(a.plastic_area - b.plastic_area) <= bound)
+    assert np.max(np.abs(a.plastic_area - b.plastic_area)) < 1e-6
+    assert a.info["area_residual"] < 1e-12

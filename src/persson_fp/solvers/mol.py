@@ -68,6 +68,8 @@ from scipy.optimize import brentq
 from ..exact import image_pdf
 from ..fudge import NoFudge
 from ..solution import SolverError
+from ..strip import strip_pdf
+from . import moving_wall
 from .base import Solver, SolverOutput, check_float, check_int
 
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
@@ -166,6 +168,15 @@ class MethodOfLinesSolver(Solver):
         (``initial="exact"``); both None: tau0 = 2 h^2.
     k_domain : float
         p_max = max(p_bar) + k_domain sqrt(tau(zeta_max)).
+    tol : float or None
+        Moving yield wall only: raise :class:`~persson_fp.SolverError` when the error estimate of the areas
+        or the load residual exceeds it.
+
+    A constant hardness: the domain is [0, sigma_Y] (absorbing yield wall) and A_pl = (p_bar - F_el)/sigma_Y
+    (the strip's load balance); with a fudge factor S sees A_el + A_pl.  A scale-dependent hardness (moving
+    wall): the front-fixed finite-volume fluxes of :mod:`persson_fp.solvers.moving_wall` on ``n_p`` cells
+    (default 200), integrated in V by ``solve_ivp`` with a banded Jacobian, and the error estimated from a
+    partner run on n_p / 2 cells.
     """
 
     name = "mol"
@@ -180,6 +191,7 @@ class MethodOfLinesSolver(Solver):
         "zeta0": None,
         "tau0_fraction": None,
         "k_domain": 10.0,
+        "tol": None,
     }
 
     def validate(self) -> None:
@@ -197,6 +209,8 @@ class MethodOfLinesSolver(Solver):
             raise ValueError(f"variable must be 'tau' or 'zeta', got {o['variable']!r}")
         if o["initial"] not in ("exact", "delta"):
             raise ValueError(f"initial must be 'exact' or 'delta', got {o['initial']!r}")
+        if o["tol"] is not None:
+            o["tol"] = check_float(o["tol"], "tol", 0.0, 1.0)
         if o["initial"] == "delta" and (o["zeta0"] is not None or o["tau0_fraction"] is not None):
             raise ValueError("zeta0 / tau0_fraction apply to initial='exact' only")
         o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 1e3)
@@ -245,6 +259,13 @@ class MethodOfLinesSolver(Solver):
         fudge = pr.fudge
         nofudge = isinstance(fudge, NoFudge)
         self._grid_cache = (p, h, w)
+        # the contact area that S sees, A = wA . P + a0: A_el, plus (constant hardness) A_pl = (p_bar - F_el)/sigma
+        if pr.hardness is not None:
+            sig = float(pr.hardness.sigma(1.0))
+            wA = w - w * pi / sig
+            a0 = pr.p_bar / sig
+        else:
+            wA, a0 = w, np.zeros(nl)
         info = {}
 
         # initial data
@@ -253,11 +274,11 @@ class MethodOfLinesSolver(Solver):
             if o["variable"] == "tau":
                 tau0 = float(np.max(tau0_l))  # common tau0; each load's V_j0 from the exact map
                 V0_l = self._V_at_tau(tau0)
-                P0 = image_pdf(pi[None, :], pr.p_bar[:, None], tau0)
+                P0 = self._start_pdf(pi[None, :], pr.p_bar[:, None], tau0)
                 info["zeta0"] = self.zeta_from_V(V0_l) if not nofudge else np.full(nl, z0)
             else:
                 tau0 = None
-                P0 = image_pdf(pi[None, :], pr.p_bar[:, None], tau0_l[:, None])
+                P0 = self._start_pdf(pi[None, :], pr.p_bar[:, None], tau0_l[:, None])
                 V0_l = np.full(nl, V0)
                 info["zeta0"] = np.full(nl, z0)
         else:
@@ -281,25 +302,25 @@ class MethodOfLinesSolver(Solver):
 
             def fun_readable(t, y):
                 P = y.reshape(nl, m)
-                A = P @ w
+                A = P @ wA + a0
                 c = 0.5 * fudge.S(A) * float(dVdz(t))
                 return (c[:, None] * laplacian_readable(P, h, order)).ravel()
 
             def fun(t, y):
                 P = y.reshape(nl, m)
-                c = 0.5 * fudge.S(P @ w) * float(dVdz(t))
+                c = 0.5 * fudge.S(P @ wA + a0) * float(dVdz(t))
                 return (Lb @ y).reshape(nl, m).__imul__(c[:, None]).ravel()
 
             def jac(t, y):
                 P = y.reshape(nl, m)
-                A = P @ w
+                A = P @ wA + a0
                 d = 0.5 * float(dVdz(t))
                 c = d * fudge.S(A)
                 if nofudge:
                     return Lb * c[0]
                 cp = d * fudge.dS_dA(A)
                 LP = (Lb @ y).reshape(nl, m)
-                blocks = [c[j] * Lm + sp.csr_matrix(np.outer(LP[j], cp[j] * w)) for j in range(nl)]
+                blocks = [c[j] * Lm + sp.csr_matrix(np.outer(LP[j], cp[j] * wA)) for j in range(nl)]
                 return sp.block_diag(blocks, format="csr")
 
             return MOLSystem(fun, fun_readable, jac, P0.ravel(), t0, t1, nl, m, False)
@@ -333,7 +354,7 @@ class MethodOfLinesSolver(Solver):
 
         def fun_readable(t, y):
             P = y[:n].reshape(nl, m)
-            A = P @ w
+            A = P @ wA + a0
             return np.concatenate([0.5 * laplacian_readable(P, h, order).ravel(), 1.0 / fudge.S(A)])
 
         half_top = (0.5 * Lb).tocsr()
@@ -341,15 +362,15 @@ class MethodOfLinesSolver(Solver):
         def fun(t, y):
             out = np.empty_like(y)
             out[:n] = half_top @ y[:n]
-            out[n:] = 1.0 / fudge.S(y[:n].reshape(nl, m) @ w)
+            out[n:] = 1.0 / fudge.S(y[:n].reshape(nl, m) @ wA + a0)
             return out
 
         def jac(t, y):
-            A = y[:n].reshape(nl, m) @ w
+            A = y[:n].reshape(nl, m) @ wA + a0
             S = fudge.S(A)
             r = -fudge.dS_dA(A) / (S * S)
             data = J.data.copy()
-            data[bot_start:] = (r[:, None] * w[None, :]).ravel()
+            data[bot_start:] = (r[:, None] * wA[None, :]).ravel()
             return sp.csr_matrix((data, J.indices, J.indptr), shape=J.shape)
 
         y0 = np.concatenate([P0.ravel(), V0_l])
@@ -375,6 +396,13 @@ class MethodOfLinesSolver(Solver):
     def _solve(self) -> SolverOutput:
         pr = self.problem
         o = self.opts
+        if pr.moving_wall:
+            if o["integrator"] not in ("BDF", "Radau", "LSODA"):
+                raise ValueError("a moving yield wall needs a stiff integrator: 'BDF', 'Radau' or 'LSODA'")
+            n = 200 if o["n_p"] is None else o["n_p"]
+            atol = o["atol"] if o["atol"] is not None else o["rtol"] * 1e-3
+            frac = 0.05 if o["tau0_fraction"] is None else o["tau0_fraction"]
+            return moving_wall.solve_lines_cells(self, n, o["rtol"], atol, o["integrator"], frac, o["tol"], o["zeta0"])
         sysm = self.system()
         p, h, w = self._grid_cache
         nl, m = sysm.n_loads, sysm.m
@@ -441,7 +469,7 @@ class MethodOfLinesSolver(Solver):
 
             for _ in range(20):
                 Vj, Pj = at(tau_st)
-                step = (Vj - V_out[:, None]) * pr.fudge.S(Pj @ w)
+                step = (Vj - V_out[:, None]) * pr.fudge.S(self._area(Pj, w, p[1:-1]))
                 tau_st = np.clip(tau_st - step, res.t[0], res.t[-1])
                 if np.all(np.abs(step) <= 1e-15 * tau_st):
                     break
@@ -474,4 +502,23 @@ class MethodOfLinesSolver(Solver):
             "tau_out": tau_info,
         }
         wq = quadrature_weights(o["n_p"], h, o["order"])
-        return SolverOutput(p=p, P0=P_full, weights=wq, kind="point", info=info)
+        plastic = None
+        if pr.hardness is not None:  # the strip's load balance F_el + sigma A_pl = p_bar gives A_pl
+            plastic = (pr.p_bar - P_full @ (wq * p)) / float(pr.hardness.sigma(1.0))
+        return SolverOutput(p=p, P0=P_full, weights=wq, kind="point", info=info, plastic_area=plastic)
+
+    def _start_pdf(self, p, p_bar, tau):
+        """The exact PDF at the start: the image solution, or the strip's with a constant hardness."""
+        hard = self.problem.hardness
+        if hard is None:
+            return image_pdf(p, p_bar, tau)
+        return strip_pdf(p, p_bar, float(hard.sigma(1.0)), tau)
+
+    def _area(self, P, w, pi):
+        """Contact area A_el (+ A_pl = (p_bar - F_el) / sigma with a constant hardness) of P (..., n_loads, m)."""
+        pr = self.problem
+        A = P @ w
+        if pr.hardness is not None:
+            sig = float(pr.hardness.sigma(1.0))
+            A = A + (pr.p_bar - P @ (w * pi)) / sig
+        return A

@@ -236,6 +236,88 @@ def check_resolved(problem, V_st, n: int, zeta_st) -> None:
         )
 
 
+def solve_lines(mw: MovingWall, V_st, rtol: float, atol: float, integrator: str, tau0_fraction: float, V0=None):
+    """The method of lines on the same fluxes: ``solve_ivp`` in V on y = (w, A_pl, A_non) per load, with S at
+    the current total contact area and a banded Jacobian (S frozen: exact for the linear part).  Returns the
+    per-station dict of :meth:`MovingWall.solve`."""
+    import scipy.sparse as sp
+    from scipy.integrate import solve_ivp
+
+    pr = mw.problem
+    S = pr.fudge.S
+    m, n, h = pr.n_loads, mw.n, mw.h
+    V_st = np.asarray(V_st, dtype=float)
+    if V0 is None:
+        V0 = mw.choose_V0(float(V_st[0]), tau0_fraction)
+    y0w, A_non0, A_pl0 = mw.start(V0)
+    k = n + 2  # unknowns per load: w (n), A_pl, A_non
+
+    def split(y):
+        Y = y.reshape(m, k)
+        return Y[:, : n + 1], Y[:, n + 1]
+
+    def total_area(wa):
+        return np.clip(wa[:, :n].sum(axis=1) * h + wa[:, n], 0.0, 1.0)
+
+    def fun(V, y):
+        wa, _ = split(y)
+        S_now = np.ones(m) if mw.no_fudge else S(total_area(wa))
+        c = mw.coefficients(V, S_now)
+        out = np.empty((m, k))
+        out[:, : n + 1] = engine.apply(engine.assemble(c, h), wa)
+        out[:, n + 1] = engine.outflux_low(c, wa, h)
+        return out.ravel()
+
+    def jac(V, y):
+        wa, _ = split(y)
+        S_now = np.ones(m) if mw.no_fudge else S(total_area(wa))
+        c = mw.coefficients(V, S_now)
+        ab = engine.assemble(c, h)
+        blocks = []
+        for j in range(m):
+            Lj = sp.diags(
+                [ab[j, 3, :-2], ab[j, 2, :-1], ab[j, 1], ab[j, 0, 1:]], [-2, -1, 0, 1], shape=(n + 1, n + 1)
+            ).tolil()
+            J = sp.lil_matrix((k, k))
+            J[: n + 1, : n + 1] = Lj
+            J[n + 1, 0] = -engine.AbsorbingWall.flux_coefficient(float(np.atleast_2d(c.D)[j, 0]), h)
+            blocks.append(J.tocsr())
+        return sp.block_diag(blocks, format="csr")
+
+    y0 = np.concatenate([y0w, A_non0[:, None]], axis=1).ravel()
+    res = solve_ivp(
+        fun,
+        (V0, float(V_st[-1])),
+        y0,
+        method=integrator,
+        t_eval=V_st,
+        rtol=rtol,
+        atol=atol,
+        jac=jac if integrator in ("BDF", "Radau") else None,
+    )
+    if not res.success:
+        raise SolverError(f"mol (moving wall): solve_ivp failed ({res.message})")
+    Y = res.y.T.reshape(V_st.size, m, k)
+    s_st = mw.wall_many(V_st)[0]
+    W = Y[:, :, :n]
+    return {
+        "W": W,
+        "s": s_st,
+        "elastic_area": W.sum(axis=-1) * h,
+        "plastic_area": Y[:, :, n],
+        "noncontact_area": Y[:, :, n + 1],
+        "elastic_load": s_st[:, None] * (W @ mw.x) * h,
+        "plastic_load": s_st[:, None] * Y[:, :, n],
+        "V0": V0,
+        "zeta0": float(mw.zeta(V0)[0]),
+        "start_plastic_area": float(np.max(A_pl0)),
+        "steps": int(res.t.size),
+        "nfev": int(res.nfev),
+        "njev": int(res.njev),
+        "max_cell_peclet": float("nan"),
+    }
+
+
 _QUANTITIES = ("elastic_area", "plastic_area", "noncontact_area", "elastic_load", "plastic_load")
 
 
@@ -248,20 +330,49 @@ def richardson(fine: dict, coarse: dict, order: float = 2.0) -> dict:
 def solve_cells(
     solver, n: int, n_steps: int, scheme: str, coupling: str, damped: int, tau0_fraction: float, tol, zeta0=None
 ):
-    """The moving-wall run of a cell method (``"fv"``): the run at (n, n_steps), its Richardson partner at
-    (n/2, n_steps/2), the checks, and the :class:`~persson_fp.solvers.base.SolverOutput`."""
-    from .base import SolverOutput
-
+    """The moving-wall run of ``"fv"``: (n, n_steps) and its Richardson partner (n/2, n_steps/2)."""
     pr = solver.problem
     V_st = np.asarray(solver.V_out, dtype=float)
     check_resolved(pr, V_st, n, solver.zeta_out)
-    V0 = None if zeta0 is None else float(pr.V(zeta0))
-    if V0 is not None and V0 <= 0.0:
-        raise ValueError("zeta0 must be > 1 for a moving yield wall (the start is the PDF at zeta0, not the delta)")
+    V0 = _start_V(pr, zeta0)
     fine = MovingWall(pr, n).solve(V_st, n_steps, scheme, coupling, damped, tau0_fraction, V0)
     coarse = MovingWall(pr, max(n // 2, 4)).solve(
         V_st, max(n_steps // 2, 2), scheme, coupling, damped, tau0_fraction, fine["V0"]
     )
+    what = f"|Q(n_p, n_steps) - Q(n_p/2, n_steps/2)|, n_p = {n}, n_steps = {n_steps} (conservative)"
+    info = {
+        "steps": fine["steps"],
+        "scheme": scheme,
+        "coupling": "exact (S = 1)" if isinstance(pr.fudge, NoFudge) else coupling,
+    }
+    return finish(solver, n, fine, coarse, what, tol, info)
+
+
+def solve_lines_cells(solver, n: int, rtol: float, atol: float, integrator: str, tau0_fraction: float, tol, zeta0=None):
+    """The moving-wall run of ``"mol"``: n cells and its partner at n/2 (time by ``rtol``)."""
+    pr = solver.problem
+    V_st = np.asarray(solver.V_out, dtype=float)
+    check_resolved(pr, V_st, n, solver.zeta_out)
+    V0 = _start_V(pr, zeta0)
+    fine = solve_lines(MovingWall(pr, n), V_st, rtol, atol, integrator, tau0_fraction, V0)
+    coarse = solve_lines(MovingWall(pr, max(n // 2, 4)), V_st, rtol, atol, integrator, tau0_fraction, fine["V0"])
+    what = f"|Q(n_p) - Q(n_p/2)|, n_p = {n}, rtol = {rtol:g} (conservative in p; time by rtol)"
+    info = {"steps": fine["steps"], "integrator": integrator, "nfev": fine["nfev"], "njev": fine["njev"]}
+    return finish(solver, n, fine, coarse, what, tol, info)
+
+
+def _start_V(pr, zeta0):
+    V0 = None if zeta0 is None else float(pr.V(zeta0))
+    if V0 is not None and V0 <= 0.0:
+        raise ValueError("zeta0 must be > 1 for a moving yield wall (the start is the PDF at zeta0, not the delta)")
+    return V0
+
+
+def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra: dict):
+    """Checks, error estimate and the :class:`~persson_fp.solvers.base.SolverOutput` of a moving-wall run."""
+    from .base import SolverOutput
+
+    pr = solver.problem
     est = richardson(fine, coarse, order=1.0)  # conservative: exact for first order, 3x over at second
     area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
     area_residual = float(np.max(np.abs(area_sum - 1.0)))
@@ -281,16 +392,10 @@ def solve_cells(
     p = s[:, None] * MovingWall(pr, n).x[None, :]
     info = {
         "grid": {"n_p": n, "mapping": "x = p / sigma_Y(zeta)", "p_max": s},
-        "steps": fine["steps"],
         "zeta0": fine["zeta0"],
-        "scheme": scheme,
-        "coupling": "exact (S = 1)" if isinstance(pr.fudge, NoFudge) else coupling,
+        **info_extra,
         "moving_wall": True,
-        "error_estimate": {
-            **{k: v for k, v in est.items()},
-            "method": f"|Q(n_p, n_steps) - Q(n_p/2, n_steps/2)|, n_p = {n}, n_steps = {n_steps} (conservative)",
-            "max_area": worst_area,
-        },
+        "error_estimate": {**est, "method": what, "max_area": worst_area},
         "area_residual": area_residual,
         "load_residual": load_residual,
         "start_plastic_area": fine["start_plastic_area"],

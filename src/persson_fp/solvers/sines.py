@@ -653,6 +653,9 @@ class SineSeriesSolver(Solver):
         if tab is None:  # tau = V
             tau = np.repeat(V_out[:, None], pb.size, axis=1)
             tinfo = {"tau_map_nodes": 0, "tau_map_iterations": 0, "tau_map_residual": 0.0}
+        elif pr.hardness is not None:  # the strip's exact map tau' = S(A_el + A_pl): the infinite series' own area
+            tau = np.asarray(self.tau_out, dtype=float)
+            tinfo = {"tau_map": "exact strip map (persson_fp.strip)"}
         else:
             tau, tinfo = self._tau_map(tab, L, N, V_out, self.tau_out)  # (n_zeta, n_loads)
 
@@ -677,6 +680,10 @@ class SineSeriesSolver(Solver):
         # the notebooks quote round-off-level errors of the committed runs)
         odd = n % 2 == 1
         A = (coef[..., odd] * (2.0 / k[odd])).sum(axis=-1)
+        plastic = None
+        if pr.hardness is not None:  # L = sigma_Y: the mass absorbed at the yield wall, summed in closed form
+            sgn = np.where(n % 2 == 1, 1.0, -1.0)
+            plastic = pb / L - (coef * (sgn * L / (n * np.pi))).sum(axis=-1)  # strip: A_pl sine series
         info = {
             "grid": "Gauss-Legendre",
             "p_max": L,
@@ -688,4 +695,4 @@ class SineSeriesSolver(Solver):
             "steps": 0,
             **tinfo,
         }
-        return SolverOutput(p=p, P0=P0, weights=w, kind="point", info=info, contact_area=A)
+        return SolverOutput(p=p, P0=P0, weights=w, kind="point", info=info, contact_area=A, plastic_area=plastic)
