@@ -117,3 +117,16 @@ def test_contact_area_curve_quick(tmp_path):
         # the sine series (modes for 1e-13) reaches the issue's 1e-6 on every load, and one method is marked
         assert next(r for r in pde if r["method"] == "sines")["max_abs_area_error"] < 1e-6
         assert sum(bool(r["fastest_reaching_1e-06"]) for r in pde) == 1
+
+
+def test_plasticity_quick(tmp_path):
+    """The elastoplastic benchmark's quick mode: every scene present, the exact-series scene accurate."""
+    rows = _module("plasticity").main(["--quick", "--output", str(tmp_path)])
+    _png(tmp_path / "plasticity.png")
+    assert len(_rows(tmp_path / "plasticity.csv")) == len(rows)
+    assert {r["scene"] for r in rows} == {"constant", "moving", "zeta 1e16"}
+    const = [r for r in rows if r["scene"] == "constant" and r["method"] == "sines"]
+    assert const and max(r["error_A_pl"] for r in const) < 1e-12
+    fv = [r for r in rows if r["scene"] == "moving" and r["method"] == "fv"]
+    assert min(r["error_A_pl"] for r in fv) < 1e-6
+    assert "cn-uniform (peer)" in {r["method"] for r in rows}

@@ -263,8 +263,10 @@ class FiniteVolumeSolver(SpectralPath, Solver):
         else:  # tau of the largest-tau load decides the split; nodes per load below
             s = np.max(pr.tau_of_V(V_st), axis=-1)
             if o["stepping"] == "graded":  # (the offset 1e-3 g keeps a delta start, tau = 0, finite)
-                tau_st, g = s, _GRADE * s[-1]
-                s = tau_st + g * np.log(tau_st + 1e-3 * g)
+                tau_st = s
+                warp = self._warp()
+                g = _GRADE * float(warp(tau_st[-1]))
+                s = warp(tau_st) + g * np.log(warp(tau_st) + 1e-3 * g)
         lengths = np.diff(s)
         n_seg = len(lengths)
         counts = np.maximum(1, np.round(o["n_steps"] * lengths / max(s[-1] - s[0], 1e-300)).astype(int))
@@ -284,7 +286,7 @@ class FiniteVolumeSolver(SpectralPath, Solver):
             elif o["stepping"] == "graded":  # uniform in s within the segment, mapped to tau fractions
                 ta, tb = tau_st[i], tau_st[i + 1]
                 tt = ta + np.geomspace(1e-3 * g, tb - ta + 1e-3 * g, 513) - 1e-3 * g
-                ss = tt + g * np.log(tt + 1e-3 * g)
+                ss = warp(tt) + g * np.log(warp(tt) + 1e-3 * g)
                 tau_t = np.interp(s[i] + t * (s[i + 1] - s[i]), ss, tt)
                 V = self._uniform_tau_nodes(Va, Vb, (tau_t - ta) / max(tb - ta, 1e-300))
             else:
@@ -292,6 +294,17 @@ class FiniteVolumeSolver(SpectralPath, Solver):
             V[-1] = Vb  # land on the station exactly
             pieces.append(V)
         return np.concatenate(pieces, axis=0), np.cumsum(counts)
+
+    def _warp(self):
+        """tau as the graded stepping sees it: tau itself, or with a constant hardness
+        T = c (1 - exp(-tau / c)), c = 30 sigma_Y^2: the strip forgets its start on the time scale sigma_Y^2
+        (the elastic area decays like exp(-pi^2 tau / (2 sigma_Y^2))), so steps are spent before that, not
+        spread uniformly over a tau far beyond it."""
+        pr = self.problem
+        if pr.hardness is None:
+            return lambda t: np.asarray(t, dtype=float)
+        c = 30.0 * float(pr.hardness.sigma(1.0)) ** 2
+        return lambda t: -c * np.expm1(-np.asarray(t, dtype=float) / c)
 
     def _uniform_tau_nodes(self, Va, Vb, t):
         """V nodes at the tau fractions ``t`` between tau(Va) and tau(Vb), per load, shape (len(t), n_loads).
