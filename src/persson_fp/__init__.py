@@ -6,7 +6,7 @@ package gives its exact solution (:func:`exact`), the spectrum and fudge-factor
 physics around it, and numerical solvers behind :func:`solve`.
 """
 
-from . import fudge
+from . import fudge, hardness
 from .effective import EffectiveVariance, effective_variance
 from .exact import (
     ExactSolution,
@@ -17,6 +17,7 @@ from .exact import (
     pressure_spectrum,
     variance_closed_form,
 )
+from .fokker_planck import FokkerPlanckProblem
 from .problem import ContactProblem
 from .solution import Comparison, InstabilityError, Solution, SolverError
 from .solvers import METHODS, available_methods, solve
@@ -29,6 +30,8 @@ __all__ = [
     "SelfAffinePSD",
     "TabulatedPSD",
     "ContactProblem",
+    "FokkerPlanckProblem",
+    "hardness",
     "fudge",
     "EffectiveVariance",
     "effective_variance",

@@ -116,6 +116,11 @@ class ExactSolution:
 
     def __init__(self, problem: ContactProblem, zeta=None):
         _check_problem(problem)
+        if problem.general:
+            raise ValueError(
+                "general Fokker-Planck coefficients (B1, B2) have no closed form; solve the problem numerically: "
+                "pf.solve(problem, method='fv') (or 'mol')"
+            )
         if problem.moving_wall:
             raise ValueError(
                 f"a scale-dependent hardness ({problem.hardness!r}) is a moving yield wall with no closed form; "

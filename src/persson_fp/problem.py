@@ -198,6 +198,16 @@ class ContactProblem:
         return effective_variance(self.fudge).V_of_tau(self.p_bar, tau)
 
     @property
+    def general(self) -> bool:
+        """True for general Fokker--Planck coefficients (:class:`~persson_fp.FokkerPlanckProblem`)."""
+        return False
+
+    @property
+    def has_closed_form(self) -> bool:
+        """Whether :func:`persson_fp.exact` solves this problem (no moving wall, no general coefficients)."""
+        return not (self.moving_wall or self.general)
+
+    @property
     def moving_wall(self) -> bool:
         """True for a scale-dependent hardness (a yield wall that moves with zeta: no closed form)."""
         return self.hardness is not None and not self.hardness.is_constant

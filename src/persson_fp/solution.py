@@ -358,9 +358,10 @@ class Solution:
         A scale-dependent hardness (moving yield wall) has no closed form: then a ``ValueError``
         points to ``info["error_estimate"]``, the solver's own estimate.
         """
-        if self.problem.moving_wall:
+        if not self.problem.has_closed_form:
             raise ValueError(
-                "compare(): a scale-dependent hardness has no exact solution to compare with; the solver's own "
+                "compare(): this problem (a scale-dependent hardness or general coefficients) has no exact "
+                "solution to compare with; the solver's own "
                 "error estimate is in info['error_estimate'] (and the conservation residuals in info['checks'])"
             )
         ex = exact(self.problem.with_loads(self.problem.p_bar), self.zeta)

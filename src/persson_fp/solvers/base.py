@@ -104,6 +104,9 @@ class Solver:
     """
 
     name: str = "base"
+    SUPPORTS: frozenset = frozenset()
+    """Which problems beyond the homogenised elastic one the method solves: "hardness" (a constant yield wall),
+    "moving_wall" (a scale-dependent hardness), "general" (Fokker-Planck coefficients B1, B2)."""
     OPTIONS: dict = {}
     """Options of the method with their defaults (shared knobs it uses included)."""
 
@@ -111,6 +114,24 @@ class Solver:
         if not isinstance(problem, ContactProblem):
             raise ValueError(f"problem must be a ContactProblem, got {type(problem).__name__}")
         self.problem = problem
+        needs = []
+        if problem.hardness is not None:
+            needs.append("moving_wall" if problem.moving_wall else "hardness")
+        if problem.general:
+            needs.append("general")
+        for need in needs:
+            if need not in self.SUPPORTS:
+                what = {
+                    "hardness": "a hardness wall",
+                    "moving_wall": "a scale-dependent hardness (moving yield wall)",
+                    "general": "general Fokker-Planck coefficients",
+                }[need]
+                which = {
+                    "hardness": "'fv', 'mol' or 'sines'",
+                    "moving_wall": "'fv' or 'mol'",
+                    "general": "'fv' or 'mol'",
+                }
+                raise ValueError(f"method {self.name!r} does not solve {what}; use method={which[need]}")
         known = set(self.OPTIONS)
         for key in list(options):
             if key in known:

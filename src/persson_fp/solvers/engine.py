@@ -153,36 +153,39 @@ def _solve(ab: np.ndarray, c: float, rhs: np.ndarray) -> np.ndarray:
     return out
 
 
-def step(coef_at, t: float, dt: float, y: np.ndarray, h: float, scheme: str = "tr-bdf2"):
-    r"""One step of :math:`\dot y = L(t) y` from t to t + dt; returns (y_new, mass through x = 0).
+def step(coef_at, t: float, dt: float, y: np.ndarray, h: float, scheme: str = "tr-bdf2", source=None):
+    r"""One step of :math:`\dot y = L(t) y + f(t)` from t to t + dt; returns (y_new, mass through x = 0).
 
-    ``coef_at(t)`` gives the :class:`Coefficients` at time t.  Schemes: "tr-bdf2" (trapezoidal stage to
-    t + γdt, then BDF2), "crank-nicolson", "implicit" (backward Euler), "be-halves" (two backward-Euler half
-    steps, a damped start).  The absorbed mass uses the stage weights of the scheme, so that
-    sum(w) h + a + absorbed is conserved to round-off.
+    ``coef_at(t)`` gives the :class:`Coefficients` at time t; ``source(t)`` (optional, for manufactured solutions)
+    the cell averages of f, shape (m, n + 1) (last column: the wall mass's source, usually 0).  Schemes:
+    "tr-bdf2" (trapezoidal stage to t + γdt, then BDF2), "crank-nicolson", "implicit" (backward Euler),
+    "be-halves" (two backward-Euler half steps, a damped start).  The absorbed mass uses the stage weights of the
+    scheme, so that sum(w) h + a + absorbed is conserved to round-off (without a source).
     """
+    f = (lambda _t: 0.0) if source is None else source
     if scheme == "be-halves":
-        y1, j1 = step(coef_at, t, 0.5 * dt, y, h, "implicit")
-        y2, j2 = step(coef_at, t + 0.5 * dt, 0.5 * dt, y1, h, "implicit")
+        y1, j1 = step(coef_at, t, 0.5 * dt, y, h, "implicit", source)
+        y2, j2 = step(coef_at, t + 0.5 * dt, 0.5 * dt, y1, h, "implicit", source)
         return y2, j1 + j2
     c0 = coef_at(t)
     if scheme == "implicit":
         c1 = coef_at(t + dt)
-        y1 = _solve(assemble(c1, h), dt, y)
+        y1 = _solve(assemble(c1, h), dt, y + dt * f(t + dt))
         return y1, dt * outflux_low(c1, y1, h)
     if scheme == "crank-nicolson":
         c1 = coef_at(t + dt)
         L0 = assemble(c0, h)
-        y1 = _solve(assemble(c1, h), 0.5 * dt, y + 0.5 * dt * apply(L0, y))
+        y1 = _solve(assemble(c1, h), 0.5 * dt, y + 0.5 * dt * (apply(L0, y) + f(t) + f(t + dt)))
         return y1, 0.5 * dt * (outflux_low(c0, y, h) + outflux_low(c1, y1, h))
     if scheme != "tr-bdf2":
         raise ValueError(f"scheme must be 'tr-bdf2', 'crank-nicolson', 'implicit' or 'be-halves', got {scheme!r}")
-    cg = coef_at(t + GAMMA * dt)
+    tg = t + GAMMA * dt
+    cg = coef_at(tg)
     c1 = coef_at(t + dt)
     L0 = assemble(c0, h)
-    ys = _solve(assemble(cg, h), 0.5 * GAMMA * dt, y + 0.5 * GAMMA * dt * apply(L0, y))
+    ys = _solve(assemble(cg, h), 0.5 * GAMMA * dt, y + 0.5 * GAMMA * dt * (apply(L0, y) + f(t) + f(tg)))
     js = 0.5 * GAMMA * dt * (outflux_low(c0, y, h) + outflux_low(cg, ys, h))
-    y1 = _solve(assemble(c1, h), _BDF2_W * dt, _BDF2_A * ys - _BDF2_B * y)
+    y1 = _solve(assemble(c1, h), _BDF2_W * dt, _BDF2_A * ys - _BDF2_B * y + _BDF2_W * dt * f(t + dt))
     j1 = _BDF2_A * js + _BDF2_W * dt * outflux_low(c1, y1, h)
     return y1, j1
 

@@ -192,6 +192,7 @@ class FiniteVolumeSolver(SpectralPath, Solver):
     """
 
     name = "fv"
+    SUPPORTS = frozenset({"hardness", "moving_wall", "general"})
     OPTIONS = {
         "n_p": 200,
         "n_steps": 100,
@@ -323,7 +324,7 @@ class FiniteVolumeSolver(SpectralPath, Solver):
     # -- the run ---------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
-        if pr.moving_wall:  # the general engine: front-fixed moving yield wall (persson_fp.solvers.moving_wall)
+        if pr.moving_wall or pr.general:  # the general engine (persson_fp.solvers.moving_wall, .engine)
             return self._solve_moving_wall()
         scheme = SCHEMES[o["scheme"]]
         coupling = scheme.coupling if o["coupling"] == "auto" else o["coupling"]
@@ -550,7 +551,16 @@ class FiniteVolumeSolver(SpectralPath, Solver):
         coupling = "predictor" if o["coupling"] in ("auto", "picard") else o["coupling"]
         damped = o["rannacher_steps"] if o["scheme"] in ("rannacher", "tr-bdf2") else 0
         return moving_wall.solve_cells(
-            self, o["n_p"], o["n_steps"], scheme, coupling, damped, o["tau0_fraction"], o["tol"], o["zeta0"]
+            self,
+            o["n_p"],
+            o["n_steps"],
+            scheme,
+            coupling,
+            damped,
+            o["tau0_fraction"],
+            o["tol"],
+            o["zeta0"],
+            o["k_domain"],
         )
 
     # -- start-up steps shared by the banded and the spectral march -------------------------------------

@@ -180,6 +180,7 @@ class MethodOfLinesSolver(Solver):
     """
 
     name = "mol"
+    SUPPORTS = frozenset({"hardness", "moving_wall", "general"})
     OPTIONS = {
         "n_p": None,
         "order": 4,
@@ -396,13 +397,15 @@ class MethodOfLinesSolver(Solver):
     def _solve(self) -> SolverOutput:
         pr = self.problem
         o = self.opts
-        if pr.moving_wall:
+        if pr.moving_wall or pr.general:
             if o["integrator"] not in ("BDF", "Radau", "LSODA"):
                 raise ValueError("a moving yield wall needs a stiff integrator: 'BDF', 'Radau' or 'LSODA'")
             n = 200 if o["n_p"] is None else o["n_p"]
             atol = o["atol"] if o["atol"] is not None else o["rtol"] * 1e-3
             frac = 0.05 if o["tau0_fraction"] is None else o["tau0_fraction"]
-            return moving_wall.solve_lines_cells(self, n, o["rtol"], atol, o["integrator"], frac, o["tol"], o["zeta0"])
+            return moving_wall.solve_lines_cells(
+                self, n, o["rtol"], atol, o["integrator"], frac, o["tol"], o["zeta0"], o["k_domain"]
+            )
         sysm = self.system()
         p, h, w = self._grid_cache
         nl, m = sysm.n_loads, sysm.m

@@ -58,15 +58,19 @@ class MovingWall:
         Cells in x = p / sigma_Y.
     """
 
-    def __init__(self, problem: ContactProblem, n: int):
+    def __init__(self, problem: ContactProblem, n: int, k_domain: float = 10.0):
         self.problem = problem
         self.n = n
         self.h = 1.0 / n
         self.x_faces = np.linspace(0.0, 1.0, n + 1)
         self.x = 0.5 * (self.x_faces[1:] + self.x_faces[:-1])
         self.no_fudge = isinstance(problem.fudge, NoFudge)
+        self.general = problem.general
         self.elastic = ContactProblem(problem.psd, problem.E_star, problem.p_bar, problem.fudge)
+        # without a hardness the far wall is the end of the numerical domain (what it absorbs is reported as lost)
+        self.p_end = problem.p_max(k_domain) if problem.hardness is None else None
         self._cache = {}
+        self._coef_cache = {}
 
     # -- the wall along V --------------------------------------------------------------------------------
     def zeta(self, V):
@@ -76,6 +80,9 @@ class MovingWall:
     def wall_many(self, V):
         """(s, s_V) arrays at complete-contact variances V: sigma_Y and d sigma_Y / dV (pressure, 1/pressure)."""
         pr = self.problem
+        if pr.hardness is None:
+            V = np.atleast_1d(np.asarray(V, dtype=float))
+            return np.full(V.shape, self.p_end), np.zeros(V.shape)
         z = self.zeta(V)
         s = pr.hardness.sigma(z)
         dV = pr.dV_dzeta(z)
@@ -99,6 +106,8 @@ class MovingWall:
 
     def coefficients(self, V, S_bar):
         """Engine coefficients at V with the fudge factor frozen at ``S_bar`` (m,)."""
+        if self.general:
+            return self._general_coefficients(V)
         s, sV = self.wall(V)
         m = self.problem.n_loads
         S_bar = np.broadcast_to(np.asarray(S_bar, dtype=float), (m,))
@@ -106,15 +115,54 @@ class MovingWall:
         v = np.broadcast_to((sV / s) * self.x_faces, (m, self.n + 1))
         return engine.Coefficients(D=D, v=v, beta=2.0 * s * sV / S_bar)
 
+    def _general_coefficients(self, V):
+        r"""Front-fixed form of :math:`\partial_V P = -\partial_p(b_1P) + \tfrac12\partial_p^2(b_2P)`, b = B / V'(zeta):
+        :math:`D = b_2/(2s^2)` at the faces, :math:`v = (s_V/s)x - b_1/s + \partial_x b_2/(2s^2)` (the derivative by
+        differences of cell-centre values: second order), :math:`\beta = 2 s s_V / b_2(s)`.  Cached per V."""
+        hit = self._coef_cache.get(V)
+        if hit is not None:
+            return hit
+        pr = self.problem
+        s, sV = self.wall(V)
+        z = float(self.zeta(V)[0])
+        dVdz = float(pr.dV_dzeta(z))
+        B1f, B2f = pr.coefficients(s * self.x_faces, z)
+        _, B2c = pr.coefficients(s * self.x, z)
+        b1f, b2f, b2c = B1f / dVdz, B2f / dVdz, B2c / dVdz
+        h = self.h
+        dx_b2 = np.empty(self.n + 1)
+        dx_b2[1:-1] = (b2c[1:] - b2c[:-1]) / h
+        dx_b2[0] = (b2c[0] - b2f[0]) / (0.5 * h)  # (multiplies w = 0 at the absorbing wall)
+        dx_b2[-1] = (b2f[-1] - b2c[-1]) / (0.5 * h)
+        v = (sV / s) * self.x_faces - b1f / s + dx_b2 / (2.0 * s * s)
+        if sV > 0 and not b2f[-1] > 0:
+            raise ValueError(f"B2 must be > 0 at a moving yield wall (p = {s:.6g}, zeta = {z:.6g}), got {B2f[-1]!r}")
+        beta = 2.0 * s * sV / b2f[-1] if sV > 0 else 0.0
+        m = pr.n_loads
+        c = engine.Coefficients(
+            D=np.broadcast_to(b2f / (2.0 * s * s), (m, self.n + 1)),
+            v=np.broadcast_to(v, (m, self.n + 1)),
+            beta=np.full(m, beta),
+        )
+        self._coef_cache[V] = c
+        return c
+
     # -- start, nodes -----------------------------------------------------------------------------------
     def start(self, V0):
         """The state y0 (m, n + 1) at V0: the strip's cell averages at sigma_Y(zeta(V0)) and the elastic tau."""
         pr = self.problem
         s0, _ = self.wall(V0)
         tau0 = np.asarray(self.elastic.tau_of_V(np.array([V0])), dtype=float).reshape(pr.n_loads)
+        centre = pr.p_bar
+        if self.general:  # a Gaussian with the local coefficients at p_bar: mean p_bar + b1 V0, variance b2 V0
+            z0 = float(self.zeta(V0)[0])
+            B1, B2 = pr.coefficients(pr.p_bar, z0)
+            dVdz = float(pr.dV_dzeta(z0))
+            centre = pr.p_bar + B1 / dVdz * V0
+            tau0 = np.maximum(B2 / dVdz * V0, 1e-300)
         edges = s0 * self.x_faces
-        F = strip_cdf(edges[None, :], pr.p_bar[:, None], s0, tau0[:, None])
-        q = strip_quantities(pr.p_bar, s0, tau0)
+        F = strip_cdf(edges[None, :], centre[:, None], s0, tau0[:, None])
+        q = strip_quantities(centre, s0, tau0)
         y0 = np.empty((pr.n_loads, self.n + 1))
         y0[:, :-1] = np.diff(F, axis=-1) / self.h  # w = s P: its cell average in x is the p-cell mass / h
         y0[:, -1] = q["plastic_area"]
@@ -155,6 +203,8 @@ class MovingWall:
         damped: int = 2,
         tau0_fraction: float = 0.05,
         V0: float | None = None,
+        y0=None,
+        source=None,
     ):
         """March from the start (at ``V0``, default :meth:`choose_V0`) through the stations ``V_st``;
         a dict of per-station arrays."""
@@ -163,7 +213,10 @@ class MovingWall:
         m, h = pr.n_loads, self.h
         if V0 is None:
             V0 = self.choose_V0(float(V_st[0]), tau0_fraction)
-        y, A_non0, A_pl0 = self.start(V0)
+        if y0 is None:
+            y, A_non0, A_pl0 = self.start(V0)
+        else:  # a given start (cell averages of w and the wall mass), e.g. a manufactured solution
+            y, A_non0, A_pl0 = np.array(y0, dtype=float), np.zeros(m), np.asarray(y0, dtype=float)[:, -1]
         V_nodes, st_idx = self.nodes(V0, np.asarray(V_st, dtype=float), n_steps)
         self.prefill(V_nodes)
         n_st = len(V_st)
@@ -188,7 +241,7 @@ class MovingWall:
                     out_rate = engine.outflux_low(self.coefficients(Va, np.ones(m)), y, h)  # per unit tau
                     S_bar = 0.5 * (Sn + S(np.clip(A_now - dV * Sn * out_rate, 0.0, 1.0)))
             coef = lambda V, S_bar=S_bar: self.coefficients(V, S_bar)  # noqa: E731
-            y, j = engine.step(coef, Va, dV, y, h, "be-halves" if k < damped else scheme)
+            y, j = engine.step(coef, Va, dV, y, h, "be-halves" if k < damped else scheme, source)
             absorbed += j
             c = coef(Vb)
             peclet = max(peclet, float(np.max(np.abs(c.v[:, -1]) * h / np.max(c.D))))
@@ -218,10 +271,10 @@ class MovingWall:
         }
 
 
-def check_resolved(problem, V_st, n: int, zeta_st) -> None:
+def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0) -> None:
     """``ValueError`` unless the PDF spans at least one cell of the stretched grid at every station:
     sqrt(tau) >= sigma_Y / n, tau taken as S(1) V (its largest value before contact is lost)."""
-    mw = MovingWall(problem, n)
+    mw = MovingWall(problem, n, k_domain)
     s, _ = mw.wall_many(V_st)
     S1 = float(problem.fudge.S(np.array(1.0)))
     need = s / n
@@ -236,7 +289,9 @@ def check_resolved(problem, V_st, n: int, zeta_st) -> None:
         )
 
 
-def solve_lines(mw: MovingWall, V_st, rtol: float, atol: float, integrator: str, tau0_fraction: float, V0=None):
+def solve_lines(
+    mw: MovingWall, V_st, rtol: float, atol: float, integrator: str, tau0_fraction: float, V0=None, y0=None, source=None
+):
     """The method of lines on the same fluxes: ``solve_ivp`` in V on y = (w, A_pl, A_non) per load, with S at
     the current total contact area and a banded Jacobian (S frozen: exact for the linear part).  Returns the
     per-station dict of :meth:`MovingWall.solve`."""
@@ -249,7 +304,10 @@ def solve_lines(mw: MovingWall, V_st, rtol: float, atol: float, integrator: str,
     V_st = np.asarray(V_st, dtype=float)
     if V0 is None:
         V0 = mw.choose_V0(float(V_st[0]), tau0_fraction)
-    y0w, A_non0, A_pl0 = mw.start(V0)
+    if y0 is None:
+        y0w, A_non0, A_pl0 = mw.start(V0)
+    else:  # a given start, e.g. a manufactured solution
+        y0w, A_non0, A_pl0 = np.array(y0, dtype=float), np.zeros(m), np.asarray(y0, dtype=float)[:, -1]
     k = n + 2  # unknowns per load: w (n), A_pl, A_non
 
     def split(y):
@@ -265,6 +323,8 @@ def solve_lines(mw: MovingWall, V_st, rtol: float, atol: float, integrator: str,
         c = mw.coefficients(V, S_now)
         out = np.empty((m, k))
         out[:, : n + 1] = engine.apply(engine.assemble(c, h), wa)
+        if source is not None:
+            out[:, : n + 1] += source(V)
         out[:, n + 1] = engine.outflux_low(c, wa, h)
         return out.ravel()
 
@@ -328,15 +388,24 @@ def richardson(fine: dict, coarse: dict, order: float = 2.0) -> dict:
 
 
 def solve_cells(
-    solver, n: int, n_steps: int, scheme: str, coupling: str, damped: int, tau0_fraction: float, tol, zeta0=None
+    solver,
+    n: int,
+    n_steps: int,
+    scheme: str,
+    coupling: str,
+    damped: int,
+    tau0_fraction: float,
+    tol,
+    zeta0=None,
+    k_domain: float = 10.0,
 ):
     """The moving-wall run of ``"fv"``: (n, n_steps) and its Richardson partner (n/2, n_steps/2)."""
     pr = solver.problem
     V_st = np.asarray(solver.V_out, dtype=float)
-    check_resolved(pr, V_st, n, solver.zeta_out)
+    check_resolved(pr, V_st, n, solver.zeta_out, k_domain)
     V0 = _start_V(pr, zeta0)
-    fine = MovingWall(pr, n).solve(V_st, n_steps, scheme, coupling, damped, tau0_fraction, V0)
-    coarse = MovingWall(pr, max(n // 2, 4)).solve(
+    fine = MovingWall(pr, n, k_domain).solve(V_st, n_steps, scheme, coupling, damped, tau0_fraction, V0)
+    coarse = MovingWall(pr, max(n // 2, 4), k_domain).solve(
         V_st, max(n_steps // 2, 2), scheme, coupling, damped, tau0_fraction, fine["V0"]
     )
     what = f"|Q(n_p, n_steps) - Q(n_p/2, n_steps/2)|, n_p = {n}, n_steps = {n_steps} (conservative)"
@@ -348,14 +417,26 @@ def solve_cells(
     return finish(solver, n, fine, coarse, what, tol, info)
 
 
-def solve_lines_cells(solver, n: int, rtol: float, atol: float, integrator: str, tau0_fraction: float, tol, zeta0=None):
+def solve_lines_cells(
+    solver,
+    n: int,
+    rtol: float,
+    atol: float,
+    integrator: str,
+    tau0_fraction: float,
+    tol,
+    zeta0=None,
+    k_domain: float = 10.0,
+):
     """The moving-wall run of ``"mol"``: n cells and its partner at n/2 (time by ``rtol``)."""
     pr = solver.problem
     V_st = np.asarray(solver.V_out, dtype=float)
-    check_resolved(pr, V_st, n, solver.zeta_out)
+    check_resolved(pr, V_st, n, solver.zeta_out, k_domain)
     V0 = _start_V(pr, zeta0)
-    fine = solve_lines(MovingWall(pr, n), V_st, rtol, atol, integrator, tau0_fraction, V0)
-    coarse = solve_lines(MovingWall(pr, max(n // 2, 4)), V_st, rtol, atol, integrator, tau0_fraction, fine["V0"])
+    fine = solve_lines(MovingWall(pr, n, k_domain), V_st, rtol, atol, integrator, tau0_fraction, V0)
+    coarse = solve_lines(
+        MovingWall(pr, max(n // 2, 4), k_domain), V_st, rtol, atol, integrator, tau0_fraction, fine["V0"]
+    )
     what = f"|Q(n_p) - Q(n_p/2)|, n_p = {n}, rtol = {rtol:g} (conservative in p; time by rtol)"
     info = {"steps": fine["steps"], "integrator": integrator, "nfev": fine["nfev"], "njev": fine["njev"]}
     return finish(solver, n, fine, coarse, what, tol, info)
@@ -376,20 +457,23 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
     est = richardson(fine, coarse, order=1.0)  # conservative: exact for first order, 3x over at second
     area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
     area_residual = float(np.max(np.abs(area_sum - 1.0)))
-    load_residual = float(np.max(np.abs(fine["elastic_load"] + fine["plastic_load"] - pr.p_bar) / pr.p_bar))
+    if pr.general:  # a drift B1 moves the load: F_el + F_pl = p_bar is not a law of the general equation
+        load_residual = float("nan")
+    else:
+        load_residual = float(np.max(np.abs(fine["elastic_load"] + fine["plastic_load"] - pr.p_bar) / pr.p_bar))
     if area_residual > 1e-10:
         raise SolverError(
             f"moving wall: the areas do not sum to 1 (residual {area_residual:.3e}): the conservative scheme broke; "
             "this is a bug or an unstable step -- raise n_steps"
         )
     worst_area = max(float(np.max(est[q])) for q in ("elastic_area", "plastic_area", "noncontact_area"))
-    if tol is not None and (worst_area > tol or load_residual > tol):
+    if tol is not None and (worst_area > tol or (np.isfinite(load_residual) and load_residual > tol)):
         raise SolverError(
             f"moving wall: the error estimate {worst_area:.3e} (areas, Richardson) or the load residual "
             f"{load_residual:.3e} exceeds tol = {tol:.3g}; raise n_p and n_steps (both enter at second order)"
         )
     s = fine["s"]
-    p = s[:, None] * MovingWall(pr, n).x[None, :]
+    p = s[:, None] * (np.arange(n) + 0.5)[None, :] / n
     info = {
         "grid": {"n_p": n, "mapping": "x = p / sigma_Y(zeta)", "p_max": s},
         "zeta0": fine["zeta0"],
@@ -399,6 +483,7 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
         "area_residual": area_residual,
         "load_residual": load_residual,
         "start_plastic_area": fine["start_plastic_area"],
+        "far_wall_mass": float(np.max(fine["plastic_area"])) if pr.hardness is None else 0.0,
         "max_cell_peclet": fine["max_cell_peclet"],
     }
     return SolverOutput(
@@ -408,6 +493,6 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
         kind="cell",
         info=info,
         contact_area=fine["elastic_area"],
-        contact_area_flux=1.0 - fine["noncontact_area"],
-        plastic_area=fine["plastic_area"],
+        contact_area_flux=1.0 - fine["noncontact_area"] - (fine["plastic_area"] if pr.hardness is None else 0.0),
+        plastic_area=fine["plastic_area"] if pr.hardness is not None else None,
     )

@@ -586,6 +586,7 @@ class SineSeriesSolver(Solver):
     """
 
     name = "sines"
+    SUPPORTS = frozenset({"hardness"})
     OPTIONS = {"n_p": None, "n_eval": None, "tol": 1e-13, "rtol": 1e-14, "k_domain": 10.0}
 
     def validate(self) -> None:
