@@ -115,7 +115,10 @@ class ContactProblem:
 
     def with_loads(self, p_bar) -> ContactProblem:
         """The same surface and fudge factor with other load(s)."""
-        return ContactProblem(self.psd, self.E_star, p_bar, self.fudge, self.hardness)
+        new = ContactProblem(self.psd, self.E_star, p_bar, self.fudge, self.hardness)
+        if self._strip_ev is not None and np.array_equal(new.p_bar, self.p_bar):  # same loads: reuse the tau map
+            object.__setattr__(new, "_strip_ev", self._strip_ev)
+        return new
 
     def __repr__(self):
         loads = f"{self.p_bar[0]:.6g}" if self.scalar_load else f"<{self.p_bar.size} loads>"

@@ -338,9 +338,10 @@ class Solution:
         return self.info.get("steps")
 
     # -- comparison ------------------------------------------------------------------------
-    def exact_on_grid(self) -> np.ndarray:
+    def exact_on_grid(self, ex=None) -> np.ndarray:
         """The exact P0 on this solution's grid in the same sense (cell averages or point values)."""
-        ex = exact(self.problem.with_loads(self.problem.p_bar), self.zeta)
+        if ex is None:
+            ex = exact(self.problem.with_loads(self.problem.p_bar), self.zeta)
         if self.kind == "cell":
             edges = self.info.get("edges")
             if edges is None:
@@ -367,7 +368,7 @@ class Solution:
         ex = exact(self.problem.with_loads(self.problem.p_bar), self.zeta)
         shape = (self.zeta.size, self.problem.n_loads)
         A_ex = np.asarray(ex.contact_area).reshape(shape)
-        diff = self.P0_all - self.exact_on_grid()
+        diff = self.P0_all - self.exact_on_grid(ex)
         L1 = np.abs(diff) @ self.weights
         Linf = np.max(np.abs(diff), axis=-1)
         dA = np.abs(self.contact_area_all - A_ex)
@@ -397,6 +398,43 @@ class Solution:
             stderr_area=self.stderr_area_all,
             **hard,
         )
+
+    @property
+    def error_estimate(self) -> dict:
+        """The error of this result at every station and load, whatever the problem.
+
+        Keys ``"L1"`` (int |P0 - P0_ref| dp) and ``"contact_area"`` (and, with a hardness, ``"elastic_area"``,
+        ``"plastic_area"``, ``"noncontact_area"``), arrays of shape (n_zeta, n_loads), and ``"kind"``: where a closed
+        form exists the *true* error against :func:`persson_fp.exact`; otherwise (a moving yield wall, general
+        coefficients) the solver's own estimate, |result - result at half the resolution| (conservative: 3x the
+        error of a second-order method in its asymptotic range); for Monte Carlo the standard error of A* is
+        added as ``"stderr_area"``.  Computed once and kept in ``info["error_estimate_view"]``.
+        """
+        cached = self.info.get("error_estimate_view")
+        if cached is not None:
+            return cached
+        est = self.info.get("error_estimate")
+        if est is not None:
+            out = {
+                "kind": "estimate: |result - half-resolution result| (conservative)",
+                "L1": est["L1"],
+                "contact_area": est["noncontact_area"],  # A_el + A_pl = 1 - A_non: the same difference
+            }
+            if self.plastic_area_all is not None:
+                out.update({q: est[q] for q in ("elastic_area", "plastic_area", "noncontact_area")})
+        else:
+            c = self.compare()
+            out = {"kind": "true error against pf.exact", "L1": c.L1, "contact_area": c.area_error}
+            if c.plastic_area_error is not None:
+                out.update(
+                    elastic_area=c.elastic_area_error,
+                    plastic_area=c.plastic_area_error,
+                    noncontact_area=c.noncontact_area_error,
+                )
+        if self.stderr_area_all is not None:
+            out["stderr_area"] = self.stderr_area_all
+        self.info["error_estimate_view"] = out
+        return out
 
     def summary(self) -> str:
         """A few lines: method, grid, steps, wall time and the error made."""

@@ -15,7 +15,7 @@ GENERIC = [m for m in ("py-pde", "fipy") if m in pf.available_methods()]
 
 def test_registry_names_and_unknown_method():
     assert {"fv", "mol", "sines", "py-pde", "fipy", "chapman-kolmogorov", "monte-carlo"} <= set(METHODS)
-    with pytest.raises(ValueError, match="method must be one of"):
+    with pytest.raises(ValueError, match="method must be .auto., one of"):
         pf.solve(pf.ContactProblem.reference(), method="finite-volume")
 
 

@@ -33,7 +33,7 @@ def get_solver(method) -> type[Solver]:
     if isinstance(method, type) and issubclass(method, Solver):
         return method
     if method not in METHODS:
-        raise ValueError(f"method must be one of {sorted(METHODS)} or a Solver subclass, got {method!r}")
+        raise ValueError(f"method must be 'auto', one of {sorted(METHODS)} or a Solver subclass, got {method!r}")
     if method in EXTRAS:
         pkg, extra = EXTRAS[method]
         try:
@@ -69,7 +69,7 @@ def available_methods() -> list[str]:
     return out
 
 
-def solve(problem, method="fv", zeta_out=None, **options):
+def solve(problem, method="fv", zeta_out=None, tol=None, **options):
     """Solve Persson's diffusion problem numerically and return a :class:`~persson_fp.Solution`.
 
     Parameters
@@ -77,10 +77,15 @@ def solve(problem, method="fv", zeta_out=None, **options):
     problem : ContactProblem
         Spectrum, modulus, load(s) and fudge factor.
     method : str or Solver subclass
-        One of ``METHODS``: "fv", "mol", "sines", "py-pde", "fipy",
-        "chapman-kolmogorov", "monte-carlo".
+        "auto" (the cheapest way to ``tol``, :mod:`persson_fp.solvers.auto`) or one of ``METHODS``: "fv",
+        "mol", "sines", "py-pde", "fipy", "chapman-kolmogorov", "monte-carlo".
     zeta_out : float or array, optional
         Output stations in (1, zeta_max]; default ``zeta_max``.
+    tol : float, optional
+        Asked accuracy: the L1 error of P0 and the error of every area at every station.  With "auto" (default
+        1e-6 there) and with "fv" / "mol" the resolution is chosen for it, the result checked (against
+        :func:`persson_fp.exact`, or the solver's own estimate where no closed form exists) and refined until it
+        meets ``tol``; ``info["auto"]`` says what was done.  With "sines" it is the series' truncation tolerance.
     **options
         Shared knobs (``n_p``, ``n_steps``, ``rtol``, ``atol``, ``scheme``) and
         the method's own options (``get_solver(method).OPTIONS``).
@@ -101,5 +106,16 @@ def solve(problem, method="fv", zeta_out=None, **options):
     InstabilityError
         The discrete evolution went unstable.
     """
+    if isinstance(method, str) and method == "auto":
+        from .auto import solve_auto
+
+        return solve_auto(problem, zeta_out, 1e-6 if tol is None else tol, **options)
+    if tol is not None and isinstance(method, str) and method in ("fv", "mol"):
+        from .auto import solve_to_tol
+        from .base import check_float
+
+        return solve_to_tol(problem, method, zeta_out, check_float(tol, "tol", 0.0, 1e-1), **options)
+    if tol is not None:
+        options["tol"] = tol
     cls = get_solver(method)
     return cls(problem, zeta_out=zeta_out, **options).run()

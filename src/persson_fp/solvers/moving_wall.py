@@ -455,6 +455,11 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
 
     pr = solver.problem
     est = richardson(fine, coarse, order=1.0)  # conservative: exact for first order, 3x over at second
+    Wf, Wc = fine["W"], coarse["W"]
+    if Wf.shape[-1] == 2 * Wc.shape[-1]:  # L1 of P: the fine cells averaged in pairs onto the coarse grid
+        est["L1"] = np.abs(0.5 * (Wf[..., 0::2] + Wf[..., 1::2]) - Wc).sum(axis=-1) / Wc.shape[-1]
+    else:
+        est["L1"] = np.full(fine["elastic_area"].shape, np.nan)
     area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
     area_residual = float(np.max(np.abs(area_sum - 1.0)))
     if pr.general:  # a drift B1 moves the load: F_el + F_pl = p_bar is not a law of the general equation
