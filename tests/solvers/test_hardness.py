@@ -91,12 +91,18 @@ def test_moving_wall_conserves_area_and_load_and_reports_its_error():
         sol.compare()
 
 
-def test_moving_wall_with_fudge_factor_and_tolerance():
+def test_moving_wall_with_fudge_factor_and_tolerance(monkeypatch):
+    from persson_fp.solvers import auto
+    from persson_fp.solvers.fv import FiniteVolumeSolver
+
     pr = _moving(fudge="YP08")
     sol = pf.solve(pr, method="fv", n_p=100, n_steps=100)
     assert 0.0 < float(sol.plastic_area[-1]) < 0.3
     assert sol.info["error_estimate"]["max_area"] < 1e-4
-    with pytest.raises(pf.SolverError, match="exceeds tol"):
+    with pytest.raises(pf.SolverError, match="exceeds tol"):  # the solver's own check, given a resolution
+        FiniteVolumeSolver(pr, n_p=20, n_steps=20, tol=1e-9).run()
+    monkeypatch.setattr(auto, "MAX_REFINE", 0)  # pf.solve(tol=) refines first; without refinements it reports
+    with pytest.raises(pf.SolverError, match="not met after 0 refinements"):
         pf.solve(pr, method="fv", n_p=20, n_steps=20, tol=1e-9)
 
 
