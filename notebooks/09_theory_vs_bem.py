@@ -1,33 +1,39 @@
-from common import build
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#       format_version: '1.3'
+#       jupytext_version: 1.19.6
+#   kernelspec:
+#     display_name: Python 3 (ipykernel)
+#     language: python
+#     name: python3
+# ---
 
-CELLS = [
-    (
-        "md",
-        r"""
-# 09 — How good is the theory? Persson and its corrections against boundary-element solutions
+# %% [markdown]
+# # 09 — How good is the theory? Persson and its corrections against boundary-element solutions
+#
+# **Question.** How close are the contact area $A^*$ and the contact-pressure PDF $P_0(p)$ of Persson's theory
+# (`eq:Area_Persson`, `eq:P0_solution`) and of its fudge-factor corrections (`eq:new_B2`: Yang–Persson YP08 with
+# $\gamma$ in its documented band 0.42–0.48, Wang–Müser WM17, Xu et al. Xu24) to the *exact* answer of the same contact
+# problem, computed by the boundary-element method (BEM)?
+#
+# **Reference data** (`data/bem/`, see its README): Tamaas 2.9.0 BEM, periodic square $L=1$, $E^*=1$, self-affine
+# surfaces $H\in\{0.8, 0.3\}$ with $q_l=2\pi$, $q_r=4\cdot2\pi$, $q_s=64\cdot2\pi$, rms slope $\bar g=0.1$ exactly, so
+# $V=0.0025$; three random seeds per $H$; loads $\bar p/(E^*\bar g)\in\{0.005,\dots,0.5\}$. **Accuracy of the reference,
+# taken into account below:** $A^*$ converges at first order in the grid spacing, so the production grid $N=1024$ reads
+# *high* (≈1.5–5 %); we compare with the Richardson-extrapolated value. The seeds scatter by up to ≈6 %. Each theory is
+# evaluated with the nominal spectrum (`pf.SelfAffinePSD`) and with each surface's realised spectrum (`pf.TabulatedPSD`
+# from `psd_shells_*.csv`).
 
-**Question.** How close are the contact area $A^*$ and the contact-pressure PDF $P_0(p)$ of Persson's theory
-(`eq:Area_Persson`, `eq:P0_solution`) and of its fudge-factor corrections (`eq:new_B2`: Yang–Persson YP08 with
-$\gamma$ in its documented band 0.42–0.48, Wang–Müser WM17, Xu et al. Xu24) to the *exact* answer of the same contact
-problem, computed by the boundary-element method (BEM)?
-
-**Reference data** (`data/bem/`, see its README): Tamaas 2.9.0 BEM, periodic square $L=1$, $E^*=1$, self-affine
-surfaces $H\in\{0.8, 0.3\}$ with $q_l=2\pi$, $q_r=4\cdot2\pi$, $q_s=64\cdot2\pi$, rms slope $\bar g=0.1$ exactly, so
-$V=0.0025$; three random seeds per $H$; loads $\bar p/(E^*\bar g)\in\{0.005,\dots,0.5\}$. **Accuracy of the reference,
-taken into account below:** $A^*$ converges at first order in the grid spacing, so the production grid $N=1024$ reads
-*high* (≈1.5–5 %); we compare with the Richardson-extrapolated value. The seeds scatter by up to ≈6 %. Each theory is
-evaluated with the nominal spectrum (`pf.SelfAffinePSD`) and with each surface's realised spectrum (`pf.TabulatedPSD`
-from `psd_shells_*.csv`).
-""",
-    ),
-    (
-        "code",
-        r"""
-%matplotlib inline
+# %%
+# %matplotlib inline
 from pathlib import Path
 
-import numpy as np
 import matplotlib.pyplot as plt
+import numpy as np
 from IPython.display import Markdown, display
 
 import persson_fp as pf
@@ -49,30 +55,30 @@ p_bar = LOADS * E_star * g_bar
 def bem(H, N, seed, load, col="Astar"):
     # one BEM number; N = 1024 from the production runs ("main"), 512 / 2048 from the resolution runs ("res")
     tag = "main" if N == 1024 else "res"
-    m = (runs["tag"] == tag) & (runs["H"] == H) & (runs["N"] == N) & (runs["seed"] == seed) & np.isclose(runs["pbar_norm"], load)
+    m = (
+        (runs["tag"] == tag)
+        & (runs["H"] == H)
+        & (runs["N"] == N)
+        & (runs["seed"] == seed)
+        & np.isclose(runs["pbar_norm"], load)
+    )
     return float(runs[col][m][0]) if m.any() else np.nan
 
 
 print(f"{runs.size} BEM runs; loads p/(E* g) = {LOADS}")
-print("tags:", {t: int(np.sum(runs['tag'] == t)) for t in np.unique(runs['tag'])})
+print("tags:", {t: int(np.sum(runs["tag"] == t)) for t in np.unique(runs["tag"])})
 print("V of every surface:", np.unique(np.round(runs["V"], 12)))
-""",
-    ),
-    (
-        "md",
-        r"""
-## 1. The BEM reference and its own error
 
-Per surface and load: the production value at $N=1024$, and where the resolution runs exist, the first-order
-Richardson extrapolation $A^*_R = 2A^*_{fine} - A^*_{coarse}$ from the finest pair available ($N$ = 1024/2048, else
-512/1024). The observed order $\log_2\frac{A_{512}-A_{1024}}{A_{1024}-A_{2048}}$ checks that the convergence is first
-order. The **reference** for each $H$ and load is the seed mean at $N=1024$ times the mean Richardson correction factor
-$A^*_R/A^*_{1024}$ of the seeds that have one; the **seed scatter** is the sample std/mean of the three $N=1024$ values.
-""",
-    ),
-    (
-        "code",
-        r"""
+# %% [markdown]
+# ## 1. The BEM reference and its own error
+#
+# Per surface and load: the production value at $N=1024$, and where the resolution runs exist, the first-order
+# Richardson extrapolation $A^*_R = 2A^*_{fine} - A^*_{coarse}$ from the finest pair available ($N$ = 1024/2048, else
+# 512/1024). The observed order $\log_2\frac{A_{512}-A_{1024}}{A_{1024}-A_{2048}}$ checks that the convergence is first
+# order. The **reference** for each $H$ and load is the seed mean at $N=1024$ times the mean Richardson correction factor
+# $A^*_R/A^*_{1024}$ of the seeds that have one; the **seed scatter** is the sample std/mean of the three $N=1024$ values.
+
+# %%
 ref, ref_src, scatter, res_err, order = {}, {}, {}, {}, {}
 A1024 = {H: np.array([[bem(H, 1024, s, L) for L in LOADS] for s in SEEDS]) for H in HS}  # (seed, load)
 for H in HS:
@@ -90,7 +96,7 @@ for H in HS:
             if np.isfinite(a512) and np.isfinite(a2048):
                 order[(H, s, L)] = float(np.log2((a512 - a1024) / (a1024 - a2048)))
         ref[H][j] = A1024[H][:, j].mean() * np.mean(factors)
-        res_err[H][j] = 1.0 / np.mean(factors) - 1.0           # how high N = 1024 reads
+        res_err[H][j] = 1.0 / np.mean(factors) - 1.0  # how high N = 1024 reads
         ref_src[H].append(f"{'+'.join(sorted(pairs))} ({len(factors)} seed{'s' if len(factors) > 1 else ''})")
     scatter[H] = A1024[H].std(axis=0, ddof=1) / A1024[H].mean(axis=0)
 
@@ -99,8 +105,9 @@ for H in HS:
     for j, L in enumerate(LOADS):
         rows.append(f"| {H} | {L:g} | {ref[H][j]:.5f} | {ref_src[H][j]} | {res_err[H][j]:+.1%} | {scatter[H][j]:.1%} |")
 display(Markdown("\n".join(rows)))
-print("observed order of convergence (seed, load): ",
-      {f"H{H} s{s} {L:g}": round(p, 2) for (H, s, L), p in order.items()})
+print(
+    "observed order of convergence (seed, load): ", {f"H{H} s{s} {L:g}": round(p, 2) for (H, s, L), p in order.items()}
+)
 
 # figure: A*(N) relative to the Richardson value from 1024/2048, seed 1, against the grid spacing 1/N
 fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
@@ -117,23 +124,17 @@ for ax, H in zip(axes, HS):
     ax.set_title(f"BEM resolution error, H = {H}, seed 1")
     ax.grid(lw=0.3, which="both")
     ax.legend(fontsize=7)
-""",
-    ),
-    (
-        "md",
-        r"""
-## 2. The theories
 
-$\bar p = (\bar p/E^*\bar g)\,E^*\bar g$. With the nominal spectrum every surface has $V=0.0025$ and one $A^*$ per model;
-with the realised spectra (`TabulatedPSD`, after dropping the $q=0$ row and the empty shells beyond $q_s$, as in
-notebook 06) each seed gets its own. Note: at $\zeta_{max}$, $A^*$ and $P_0$ depend on the spectrum **only through
-$V(\zeta_{max})$** in every model here (DESIGN §1), so the realised spectrum changes them only as much as its
-continuum $V$ differs from 0.0025 (the shell table integrates to a slightly smaller $V$, see notebook 06).
-""",
-    ),
-    (
-        "code",
-        r"""
+# %% [markdown]
+# ## 2. The theories
+#
+# $\bar p = (\bar p/E^*\bar g)\,E^*\bar g$. With the nominal spectrum every surface has $V=0.0025$ and one $A^*$ per model;
+# with the realised spectra (`TabulatedPSD`, after dropping the $q=0$ row and the empty shells beyond $q_s$, as in
+# notebook 06) each seed gets its own. Note: at $\zeta_{max}$, $A^*$ and $P_0$ depend on the spectrum **only through
+# $V(\zeta_{max})$** in every model here (DESIGN §1), so the realised spectrum changes them only as much as its
+# continuum $V$ differs from 0.0025 (the shell table integrates to a slightly smaller $V$, see notebook 06).
+
+# %%
 MODELS = {
     "Persson": None,
     "YP08 γ=0.42": pf.fudge.YangPersson(gamma=0.42),
@@ -152,31 +153,35 @@ def realised(H, seed):
 
 
 tabulated = {(H, s): realised(H, s) for H in HS for s in SEEDS}
-A_nom = {(H, m): pf.exact(pf.ContactProblem(nominal[H], E_star, p_bar, f)).contact_area
-         for H in HS for m, f in MODELS.items()}
-A_tab = {(H, m): np.mean([pf.exact(pf.ContactProblem(tabulated[(H, s)], E_star, p_bar, f)).contact_area for s in SEEDS], axis=0)
-         for H in HS for m, f in MODELS.items()}
+A_nom = {
+    (H, m): pf.exact(pf.ContactProblem(nominal[H], E_star, p_bar, f)).contact_area
+    for H in HS
+    for m, f in MODELS.items()
+}
+A_tab = {
+    (H, m): np.mean(
+        [pf.exact(pf.ContactProblem(tabulated[(H, s)], E_star, p_bar, f)).contact_area for s in SEEDS], axis=0
+    )
+    for H in HS
+    for m, f in MODELS.items()
+}
 for H in HS:
     Vt = [float(tabulated[(H, s)].V(E_star=E_star)) for s in SEEDS]
     shift = A_tab[(H, "YP08 γ=0.45")] / A_nom[(H, "YP08 γ=0.45")] - 1.0
-    print(f"H = {H}: V of the realised spectra {np.round(Vt, 6)}; A*(tabulated)/A*(nominal) - 1 = "
-          f"{shift.min():+.2%} .. {shift.max():+.2%}")
-""",
-    ),
-    (
-        "md",
-        r"""
-## 3. Contact area against the BEM
+    print(
+        f"H = {H}: V of the realised spectra {np.round(Vt, 6)}; A*(tabulated)/A*(nominal) - 1 = "
+        f"{shift.min():+.2%} .. {shift.max():+.2%}"
+    )
 
-Top: $A^*$ against the load (grey dots: the three BEM surfaces at $N=1024$; black squares: the Richardson reference;
-lines: theories with the nominal spectrum; shaded: the YP08 band $\gamma$ = 0.42–0.48). Bottom: relative error against the
-reference; the grey band is the seed scatter (±1 std/mean) and the grey crosses show where plain $N=1024$ BEM would put
-the zero line — the size of the error one makes by comparing with unextrapolated BEM.
-""",
-    ),
-    (
-        "code",
-        r"""
+# %% [markdown]
+# ## 3. Contact area against the BEM
+#
+# Top: $A^*$ against the load (grey dots: the three BEM surfaces at $N=1024$; black squares: the Richardson reference;
+# lines: theories with the nominal spectrum; shaded: the YP08 band $\gamma$ = 0.42–0.48). Bottom: relative error against the
+# reference; the grey band is the seed scatter (±1 std/mean) and the grey crosses show where plain $N=1024$ BEM would put
+# the zero line — the size of the error one makes by comparing with unextrapolated BEM.
+
+# %%
 colors = {"Persson": "C0", "YP08 γ=0.45": "C1", "WM17": "C2", "Xu24": "C3"}
 fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), layout="constrained", sharex=True)
 rel = {(H, m): A_nom[(H, m)] / ref[H] - 1.0 for H in HS for m in MODELS}
@@ -187,8 +192,15 @@ for col, H in enumerate(HS):
         ax.loglog(LOADS, A1024[H][s - 1], ".", color="0.6", label="BEM N=1024 (3 seeds)" if s == 1 else None)
     ax.loglog(LOADS, ref[H], "ks", ms=5, mfc="none", label="BEM Richardson reference")
     ax.fill_between(LOADS, A_nom[(H, "YP08 γ=0.42")], A_nom[(H, "YP08 γ=0.48")], color="C1", alpha=0.25, lw=0)
-    axr.fill_between(LOADS, rel[(H, "YP08 γ=0.42")], rel[(H, "YP08 γ=0.48")], color="C1", alpha=0.25, lw=0,
-                     label="YP08 γ = 0.42–0.48")
+    axr.fill_between(
+        LOADS,
+        rel[(H, "YP08 γ=0.42")],
+        rel[(H, "YP08 γ=0.48")],
+        color="C1",
+        alpha=0.25,
+        lw=0,
+        label="YP08 γ = 0.42–0.48",
+    )
     for m, c in colors.items():
         ax.loglog(LOADS, A_nom[(H, m)], "-", color=c, label=m)
         axr.semilogx(LOADS, rel[(H, m)], "o-", ms=3, color=c)
@@ -203,49 +215,49 @@ for col, H in enumerate(HS):
     axr.grid(lw=0.3, which="both")
 axes[0, 0].legend(fontsize=7)
 axes[1, 0].legend(fontsize=7, loc="lower right")
-""",
-    ),
-    (
-        "md",
-        r"""
-### Relative error of $A^*$ against the Richardson-extrapolated BEM value
 
-Nominal spectrum; the last rows give the BEM's own uncertainty for comparison, and how much the realised spectra
-(`TabulatedPSD`) shift the YP08 value.
-""",
-    ),
-    (
-        "code",
-        r"""
+# %% [markdown]
+# ### Relative error of $A^*$ against the Richardson-extrapolated BEM value
+#
+# Nominal spectrum; the last rows give the BEM's own uncertainty for comparison, and how much the realised spectra
+# (`TabulatedPSD`) shift the YP08 value.
+
+# %%
 for H in HS:
     head = "| model | " + " | ".join(f"{L:g}" for L in LOADS) + " | mean abs |"
     rows = [f"**H = {H}**, columns: p̄/(E*ḡ)", "", head, "|---" * (LOADS.size + 2) + "|"]
     for m in MODELS:
-        rows.append(f"| {m} | " + " | ".join(f"{v:+.1%}" for v in rel[(H, m)]) + f" | {np.mean(np.abs(rel[(H, m)])):.1%} |")
-    rows.append("| YP08 γ=0.45, realised PSDs | " + " | ".join(f"{v:+.1%}" for v in rel_tab[(H, 'YP08 γ=0.45')]) +
-                f" | {np.mean(np.abs(rel_tab[(H, 'YP08 γ=0.45')])):.1%} |")
+        rows.append(
+            f"| {m} | " + " | ".join(f"{v:+.1%}" for v in rel[(H, m)]) + f" | {np.mean(np.abs(rel[(H, m)])):.1%} |"
+        )
+    rows.append(
+        "| YP08 γ=0.45, realised PSDs | "
+        + " | ".join(f"{v:+.1%}" for v in rel_tab[(H, "YP08 γ=0.45")])
+        + f" | {np.mean(np.abs(rel_tab[(H, 'YP08 γ=0.45')])):.1%} |"
+    )
     rows.append("| *BEM N=1024 vs ref* | " + " | ".join(f"{v:+.1%}" for v in res_err[H]) + " | |")
     rows.append("| *BEM seed scatter* | " + " | ".join(f"±{v:.1%}" for v in scatter[H]) + " | |")
     display(Markdown("\n".join(rows)))
-""",
-    ),
-    (
-        "md",
-        r"""
-## 4. Pressure variance
 
-$\mathrm{Var}(p)$ over the whole interface (zeros included), theory (`eq:variance_p_form1`, `pf.exact(...).variance`)
-against the BEM's `var_p` (seed mean, $N=1024$; unlike $A^*$ it hardly depends on the grid: compare the `res` rows).
-""",
-    ),
-    (
-        "code",
-        r"""
+# %% [markdown]
+# ## 4. Pressure variance
+#
+# $\mathrm{Var}(p)$ over the whole interface (zeros included), theory (`eq:variance_p_form1`, `pf.exact(...).variance`)
+# against the BEM's `var_p` (seed mean, $N=1024$; unlike $A^*$ it hardly depends on the grid: compare the `res` rows).
+
+# %%
 var_bem = {H: np.array([[bem(H, 1024, s, L, "var_p") for L in LOADS] for s in SEEDS]).mean(axis=0) for H in HS}
-var_res = max(abs(bem(H, 2048, 1, L, "var_p") / bem(H, 1024, 1, L, "var_p") - 1.0)
-              for H in HS for L in LOADS if np.isfinite(bem(H, 2048, 1, L)))
-var_rel = {(H, m): pf.exact(pf.ContactProblem(nominal[H], E_star, p_bar, f)).variance / var_bem[H] - 1.0
-           for H in HS for m, f in MODELS.items()}
+var_res = max(
+    abs(bem(H, 2048, 1, L, "var_p") / bem(H, 1024, 1, L, "var_p") - 1.0)
+    for H in HS
+    for L in LOADS
+    if np.isfinite(bem(H, 2048, 1, L))
+)
+var_rel = {
+    (H, m): pf.exact(pf.ContactProblem(nominal[H], E_star, p_bar, f)).variance / var_bem[H] - 1.0
+    for H in HS
+    for m, f in MODELS.items()
+}
 fig, axes = plt.subplots(1, 2, figsize=(11, 3.8), layout="constrained", sharey=True)
 for ax, H in zip(axes, HS):
     for m, c in colors.items():
@@ -257,24 +269,20 @@ for ax, H in zip(axes, HS):
 axes[0].set_ylabel(r"Var$_{theory}$/Var$_{BEM}$ − 1")
 axes[0].legend(fontsize=8)
 print(f"BEM var_p, N = 2048 vs 1024 (seed 1): at most {var_res:.2%} apart")
-""",
-    ),
-    (
-        "md",
-        r"""
-## 5. Pressure PDFs
 
-BEM histograms over the contact points (60 bins of $0.125\sqrt V$; density per unit pressure, so
-$\sum \text{density}\,\Delta p = A^*$, the atom $1-A^*$ at $p=0$ is not drawn) against the theories' continuous part
-$P_0(p,\zeta_{max})$ (`eq:P0_solution` at the effective variance). Thin grey: each seed; black: seed mean. Numbers: the
-$L^1$ distance $\sum_{bins}|\text{density}_{BEM}-\overline{P_0}|\,\Delta p$ with $\overline{P_0}$ the bin average of the
-theory (from `ExactSolution.cdf_contact`), once for the densities as they are (includes the area error) and once for
-the *shapes* $P_0/A^*$ (the PDF of the pressure given contact).
-""",
-    ),
-    (
-        "code",
-        r"""
+
+# %% [markdown]
+# ## 5. Pressure PDFs
+#
+# BEM histograms over the contact points (60 bins of $0.125\sqrt V$; density per unit pressure, so
+# $\sum \text{density}\,\Delta p = A^*$, the atom $1-A^*$ at $p=0$ is not drawn) against the theories' continuous part
+# $P_0(p,\zeta_{max})$ (`eq:P0_solution` at the effective variance). Thin grey: each seed; black: seed mean. Numbers: the
+# $L^1$ distance $\sum_{bins}|\text{density}_{BEM}-\overline{P_0}|\,\Delta p$ with $\overline{P_0}$ the bin average of the
+# theory (from `ExactSolution.cdf_contact`), once for the densities as they are (includes the area error) and once for
+# the *shapes* $P_0/A^*$ (the PDF of the pressure given contact).
+
+
+# %%
 def bem_hist(H, load):
     m = (pdfs["H"] == H) & np.isclose(pdfs["pbar_norm"], load)
     sub = pdfs[m]
@@ -317,8 +325,13 @@ for r, H in enumerate(HS):
         p = np.linspace(0, hi[-1], 600)
         for m, col in colors.items():
             ex = pf.exact(pf.ContactProblem(nominal[H], E_star, p_bar[j], MODELS[m]))
-            ax.plot(p / sq, ex.pdf(p) * sq, color=col, lw=1.2,
-                    label=f"{m}: L1 {L1_abs[(H, m, L)]:.3f}, shape {L1_shape[(H, m, L)]:.2f}")
+            ax.plot(
+                p / sq,
+                ex.pdf(p) * sq,
+                color=col,
+                lw=1.2,
+                label=f"{m}: L1 {L1_abs[(H, m, L)]:.3f}, shape {L1_shape[(H, m, L)]:.2f}",
+            )
         ax.set_title(f"H = {H}, p/(E*g) = {L:g}, BEM A* = {A1024[H][:, j].mean():.3f}", fontsize=10)
         ax.set_xlabel(r"$p/\sqrt{V}$")
         ax.legend(fontsize=6.5)
@@ -330,11 +343,8 @@ for m in MODELS:
     rows.append(f"| {m} | " + " | ".join(f"{v:.3f}" for v in vals) + " |")
 display(Markdown("Mean over the seven loads of the $L^1$ distances to the BEM histograms:\n\n" + "\n".join(rows)))
 print(f"sum(density dp) reproduces A* of runs.csv to {hist_sum_dev:.1e} (beyond the overflow fraction)")
-""",
-    ),
-    (
-        "code",
-        r"""
+
+# %% tags=["summary"]
 SUMMARY = {}
 for H in HS:
     h = str(H).replace(".", "")
@@ -365,59 +375,52 @@ for H in HS:
         ex = pf.exact(pf.ContactProblem(nominal[H], E_star, p_bar[j], MODELS[m]))
         SUMMARY[f"low_{k}_{h}"] = f"{float(ex.cdf_contact(0.5 * sq) / ex.contact_area):.3f}"
 SUMMARY["orders"] = f"{min(order.values()):.2f}–{max(order.values()):.2f}"
-display(Markdown("| quantity | value |\n|---|---|\n" + "\n".join(f"| `{k}` | {v} |" for k, v in SUMMARY.items())),
-        metadata={"summary": SUMMARY})
-""",
-        ("summary",),
-    ),
-    (
-        "code",
-        r"""
+display(
+    Markdown("| quantity | value |\n|---|---|\n" + "\n".join(f"| `{k}` | {v} |" for k, v in SUMMARY.items())),
+    metadata={"summary": SUMMARY},
+)
+
+# %%
 # checks: this notebook is a test (tests/test_notebooks.py executes it)
 from scipy.special import erf
 
-assert np.allclose(runs["V"], V_bem, rtol=1e-12)                                   # the data's convention
+assert np.allclose(runs["V"], V_bem, rtol=1e-12)  # the data's convention
 assert np.allclose(A_nom[(0.8, "Persson")], erf(p_bar / np.sqrt(2 * V_bem)), rtol=1e-13)  # eq:Area_Persson
-assert hist_sum_dev < 1e-6                                                          # sum density dp = A*
+assert hist_sum_dev < 1e-6  # sum density dp = A*
 for H in HS:
-    assert np.all(res_err[H] > 0)                      # N = 1024 reads high against the extrapolation (README)
+    assert np.all(res_err[H] > 0)  # N = 1024 reads high against the extrapolation (README)
     assert np.all(rel[(H, "Persson")] < -0.05) and rel[(H, "Persson")][0] < -0.25  # plain theory: A* too small ...
-    for m in ("YP08 γ=0.45", "WM17", "Xu24"):          # ... the corrections land within 15 % at every load
+    for m in ("YP08 γ=0.45", "WM17", "Xu24"):  # ... the corrections land within 15 % at every load
         assert np.max(np.abs(rel[(H, m)])) < 0.15, (H, m)
-    assert np.mean(np.abs(rel[(H, "Persson")])) > 2 * max(np.mean(np.abs(rel[(H, m)])) for m in ("YP08 γ=0.45", "WM17", "Xu24"))
+    assert np.mean(np.abs(rel[(H, "Persson")])) > 2 * max(
+        np.mean(np.abs(rel[(H, m)])) for m in ("YP08 γ=0.45", "WM17", "Xu24")
+    )
     # the table's first column, recomputed straight from runs.csv for seed 1 + the mean Richardson factor
     j0 = 0
     assert abs(ref[H][j0] / A1024[H][:, j0].mean() - 1.0 / (1.0 + res_err[H][j0])) < 1e-12
-assert 0.7 < min(order.values()) and max(order.values()) < 1.6                      # first-order convergence
+assert 0.7 < min(order.values()) and max(order.values()) < 1.6  # first-order convergence
 print("all checks passed")
-""",
-    ),
-]
 
-CLOSING = r"""
-## What the figures show
-
-* **The reference itself.** The BEM contact area converges at first order (observed orders {orders}); at the smallest
-  load the production grid $N=1024$ reads {res_08} (H = 0.8) and {res_03} (H = 0.3) high against the Richardson value,
-  and the three seeds scatter by up to {scat_08} (H = 0.8) and {scat_03} (H = 0.3). Errors of a theory smaller than
-  these few per cent cannot be resolved by this data set.
-* **Persson's plain theory** underestimates the contact area badly: {pers0_08} (H = 0.8) and {pers0_03} (H = 0.3) at the
-  smallest load, still {pers6_08} / {pers6_03} at $\bar p/(E^*\bar g)=0.5$ (mean |error| {mean_pe_08} / {mean_pe_03}).
-* **The corrections** remove most of it. Mean |error| over the seven loads, H = 0.8 / H = 0.3: YP08 ($\gamma=0.45$)
-  {mean_yp_08} / {mean_yp_03}, WM17 {mean_wm_08} / {mean_wm_03}, Xu24 {mean_xu_08} / {mean_xu_03}; closest on average:
-  {best_08} (H = 0.8), {best_03} (H = 0.3). The YP08 band $\gamma$ = 0.42–0.48 spans {yplo_08} … {yphi_08} (H = 0.8)
-  and {yplo_03} … {yphi_03} (H = 0.3) at the smallest load: the choice of $\gamma$ moves the answer by about as much as
-  the BEM's own resolution error and seed scatter.
-* **Realised vs nominal spectrum.** Using each surface's measured spectrum (`TabulatedPSD`) moves the YP08 area by at most
-  {tab_08} (H = 0.8) / {tab_03} (H = 0.3) (at $\zeta_{{max}}$ only $V$ enters). The theory's seed-to-seed spread with the
-  realised spectra is at most {tabscat_08} / {tabscat_03}, far below the BEM's {scat_08} / {scat_03}: the theories,
-  which see only $V$, do not explain the scatter between surfaces.
-* **Pressure variance.** At the smallest load the plain theory's Var(p) is {var_pe_08} / {var_pe_03} off the BEM value
-  (it puts too few points in contact, so their pressures spread more), YP08 {var_yp_08} / {var_yp_03}.
-* **PDFs.** Share of the contact points with $p<0.5\sqrt V$ at $\bar p/(E^*\bar g)=0.1$: BEM {low_bem_08} / {low_bem_03},
-  Persson {low_pe_08} / {low_pe_03}, YP08 {low_yp_08} / {low_yp_03} (H = 0.8 / 0.3). Mean shape distance
-  ($L^1$ of $P_0/A^*$ over the seven loads): Persson {shape_pe_08} / {shape_pe_03}, YP08 {shape_yp_08} / {shape_yp_03}.
-"""
-
-if __name__ == "__main__":
-    build("09_theory_vs_bem", CELLS, CLOSING)
+# %% [markdown]
+# ## What the figures show
+#
+# * **The reference itself.** The BEM contact area converges at first order (observed orders 0.90–1.29); at the smallest
+#   load the production grid $N=1024$ reads +3.5% (H = 0.8) and +5.6% (H = 0.3) high against the Richardson value,
+#   and the three seeds scatter by up to 5.7% (H = 0.8) and 1.8% (H = 0.3). Errors of a theory smaller than
+#   these few per cent cannot be resolved by this data set.
+# * **Persson's plain theory** underestimates the contact area badly: -27% (H = 0.8) and -30% (H = 0.3) at the
+#   smallest load, still -6.9% / -7.6% at $\bar p/(E^*\bar g)=0.5$ (mean |error| 20.6% / 22.6%).
+# * **The corrections** remove most of it. Mean |error| over the seven loads, H = 0.8 / H = 0.3: YP08 ($\gamma=0.45$)
+#   8.0% / 5.4%, WM17 3.3% / 3.3%, Xu24 6.0% / 3.5%; closest on average:
+#   WM17 (H = 0.8), YP08 γ=0.48 (H = 0.3). The YP08 band $\gamma$ = 0.42–0.48 spans +12.2% … +5.0% (H = 0.8)
+#   and +7.8% … +0.8% (H = 0.3) at the smallest load: the choice of $\gamma$ moves the answer by about as much as
+#   the BEM's own resolution error and seed scatter.
+# * **Realised vs nominal spectrum.** Using each surface's measured spectrum (`TabulatedPSD`) moves the YP08 area by at most
+#   0.9% (H = 0.8) / 0.5% (H = 0.3) (at $\zeta_{max}$ only $V$ enters). The theory's seed-to-seed spread with the
+#   realised spectra is at most 0.2% / 0.1%, far below the BEM's 5.7% / 1.8%: the theories,
+#   which see only $V$, do not explain the scatter between surfaces.
+# * **Pressure variance.** At the smallest load the plain theory's Var(p) is +31% / +37% off the BEM value
+#   (it puts too few points in contact, so their pressures spread more), YP08 -12% / -8%.
+# * **PDFs.** Share of the contact points with $p<0.5\sqrt V$ at $\bar p/(E^*\bar g)=0.1$: BEM 0.239 / 0.258,
+#   Persson 0.116 / 0.116, YP08 0.206 / 0.206 (H = 0.8 / 0.3). Mean shape distance
+#   ($L^1$ of $P_0/A^*$ over the seven loads): Persson 0.359 / 0.405, YP08 0.215 / 0.208.
