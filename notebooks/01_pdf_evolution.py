@@ -16,7 +16,7 @@
 # # 01 — Evolution of the pressure PDF $P_0(p,\zeta)$: every own solver against the image solution
 #
 # **Question.** How does the contact-pressure PDF broaden from $\delta(p-\bar p)$ at $\zeta=1$ as more roughness is
-# seen (the seed's Fig. 2(b)); why does the image solution $P_0=\rho(p;\bar p,V)-\rho(p;-\bar p,V)$ (`eq:P0_solution`)
+# seen (Fig. 2(b) of the Xu et al. tutorial); why does the image solution $P_0=\rho(p;\bar p,V)-\rho(p;-\bar p,V)$ (`eq:P0_solution`)
 # satisfy the absorbing wall (Fig. 5(a)); and how close do the package's own solvers — finite volumes (`fv`),
 # method of lines (`mol`), the sine series (`sines`) and the compounded Chapman–Kolmogorov iteration
 # (`chapman-kolmogorov`, `E:Compounded_CK`) — come to it at several magnifications?
@@ -24,8 +24,12 @@
 # The PDF is $P(p,\zeta)=[1-A^*]\,\delta(p)+\theta(p)\,P_0(p,\zeta)$ (`eq:PDF_piecewise_explicit`): the contact part
 # $P_0$ is a function, the non-contact part is an **atom** of weight $1-A^*$ at $p=0$. Atoms are drawn as arrows
 # whose length is proportional to their weight (the weight is written next to them).
-# Problem: DESIGN's reference surface (H = 0.8, $q_l=1$, $q_r=2$, $\zeta_{max}=128$, rms slope 0.1, $E^*=1$) at
+# Problem: the reference surface of `pf.ContactProblem.reference()` (H = 0.8, $q_l=1$, $q_r=2$, $\zeta_{max}=128$, rms slope 0.1, $E^*=1$) at
 # $\bar p/\sqrt{V(\zeta_{max})}=0.5$, Persson's original theory (no fudge factor).
+#
+# Equation labels such as `eq:P0_solution` or `E:PSD` and figure numbers refer to Y. Xu, X. Li, Q. Chen and
+# Y. Zhou, "Persson's Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic
+# Process Theory" (the Xu et al. tutorial); all works cited are listed on the documentation's references page.
 
 # %%
 # %matplotlib inline
@@ -51,7 +55,7 @@ for z, V, A in zip(ZETAS, ex.V, ex.contact_area):
     print(f"zeta = {z:6.1f}: V = {V:.4e}, A* = {A:.5f}, atom 1 - A* = {1 - A:.5f}")
 
 # %% [markdown]
-# ## 1. The image construction — seed Fig. 5(a)
+# ## 1. The image construction — the tutorial's Fig. 5(a)
 #
 # A Gaussian of variance $V(\zeta)$ centred at $\bar p$ (`eq:Gauss_Distribution`) and its mirror image centred at
 # $-\bar p$: their difference vanishes at $p=0$ for every $\zeta$ (absorbing wall, `eq:DiffEqu_BCS`) and obeys the
@@ -82,7 +86,7 @@ ax.axvline(0, color="0.5", lw=0.8)
 ax.axhline(0, color="0.5", lw=0.8)
 ax.set_xlabel(r"$p/\sqrt{V}$")
 ax.set_ylabel(r"$P\,\sqrt{V}$")
-ax.set_title(r"seed Fig. 5(a): Gaussian, its mirror image and $P_0$ (eq:P0_solution), $\zeta=\zeta_{max}$")
+ax.set_title(r"Gaussian, its mirror image and their difference $P_0$ (image solution), $\zeta=\zeta_{max}$")
 ax.legend(fontsize=8, loc="upper left")
 pos = p > 0
 image_dev = float(np.max(np.abs((g_plus - g_minus)[pos] - ex_max.pdf(p[pos]))))
@@ -92,7 +96,7 @@ print(f"max |(rho+ - rho-) - pf.exact(...).pdf| for p > 0: {image_dev:.1e};  rho
 print(f"quadrature of P0 over p > 0: {mass_img:.12f}, erf(p_bar/sqrt(2V)) = {ex_max.contact_area:.12f}")
 
 # %% [markdown]
-# ## 2. PDF broadening with $\zeta$ — seed Fig. 2(b)
+# ## 2. PDF broadening with $\zeta$ — the tutorial's Fig. 2(b)
 #
 # The exact $P_0(p,\zeta)$ on a logarithmic $\zeta$ axis. At $\zeta=1$ the PDF is the unit pulse at $\bar p$; as
 # $\zeta$ grows it spreads (variance $V(\zeta)$) and leaks into the atom at $p=0$ (blue stems, length = weight).

@@ -24,7 +24,11 @@
 # * original theory: $A^* = \mathrm{erf}\big(\bar p/\sqrt{2V(\zeta)}\big)$ (`eq:Area_Persson`), small-load limit
 #   $A^*\approx\sqrt{2/\pi}\,\bar p/\sqrt{V}$ (`eq:Asymptote_1`), $\mathrm{Var}(p)=\int A^*\,dV$ (`eq:variance_p_form1`);
 # * fudge-factor theories, $B_2 = S(A^*)\,dV/d\zeta$ (`eq:new_B2`): the same formulas at the effective variance
-#   $\tau=\int S\,dV$ instead of $V$ (DESIGN §1), so $A^*=\mathrm{erf}(\bar p/\sqrt{2\tau})$ and $\mathrm{Var}(p)=\int A^*\,d\tau$.
+#   $\tau=\int S\,dV$ instead of $V$ (`persson_fp.effective`), so $A^*=\mathrm{erf}(\bar p/\sqrt{2\tau})$ and $\mathrm{Var}(p)=\int A^*\,d\tau$.
+#
+# Equation labels such as `eq:P0_solution` or `E:PSD` and figure numbers refer to Y. Xu, X. Li, Q. Chen and
+# Y. Zhou, "Persson's Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic
+# Process Theory" (the Xu et al. tutorial); all works cited are listed on the documentation's references page.
 
 # %%
 # %matplotlib inline
@@ -37,7 +41,7 @@ import persson_fp.plotting as pfplot
 
 plt.rcParams["figure.dpi"] = 80  # keeps the committed notebook small
 MODELS = {"Persson (None)": None, "YP08 (γ = 0.45)": "YP08", "WM17 (γ = 5/9)": "WM17", "Xu24 (γ = 0.45)": "Xu24"}
-# DESIGN's reference surface: H = 0.8, q_l = 1, q_r = 2, q_s = 128 (zeta_max = 128), rms slope 0.1, E* = 1
+# the reference surface of pf.ContactProblem.reference(): H = 0.8, q_l = 1, q_r = 2, q_s = 128 (zeta_max = 128), rms slope 0.1, E* = 1
 psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=128.0)
 E_star = 1.0
 V_max = float(psd.V(E_star=E_star))
@@ -45,11 +49,11 @@ print(psd)
 print(f"V(zeta_max) = {V_max:.4e} (E* units^2), sqrt(V) = {np.sqrt(V_max):.4e}")
 
 # %% [markdown]
-# ## 1. $A^*(\bar p/\sqrt V)$ — the seed's Fig. 5(b)
+# ## 1. $A^*(\bar p/\sqrt V)$ — the tutorial's Fig. 5(b)
 #
 # In every model $A^*$ at a given magnification depends on $\bar p/\sqrt{V(\zeta)}$ alone (for the fudge models this
-# follows from the scale-free effective-variance ODE, DESIGN §1). Left: logarithmic load axis with the plain
-# asymptote (`eq:Asymptote_1`, dotted); right: linear axis as in the seed's figure.
+# follows from the scale-free effective-variance ODE of `persson_fp.effective`). Left: logarithmic load axis with the plain
+# asymptote (`eq:Asymptote_1`, dotted); right: linear axis as in the tutorial's figure.
 
 # %%
 ratio = np.geomspace(1e-3, 10.0, 400)  # p_bar / sqrt(V(zeta_max))
@@ -68,7 +72,7 @@ for label, A in area.items():
 ax1.set_xlim(0, 4)
 ax1.set_xlabel(r"$\bar p/\sqrt{V}$")
 ax1.set_ylabel(r"$A^*$")
-ax1.set_title("linear axes (seed Fig. 5(b))")
+ax1.set_title("linear axes (Xu et al. tutorial, Fig. 5(b))")
 ax1.legend(fontsize=8)
 ax1.grid(lw=0.3)
 
@@ -114,7 +118,7 @@ for k, (label, f) in enumerate(MODELS.items()):
 ax.axhline(0.01, color="0.6", lw=0.8)
 ax.set_xlabel(r"$\bar p/\sqrt{V}$")
 ax.set_ylabel("asymptote / A* − 1")
-ax.set_title("relative error of eq:Asymptote_1 (dotted: x²/3)")
+ax.set_title("relative error of the small-load asymptote (dotted: x²/3)")
 ax.set_ylim(1e-7, 10)
 ax.legend(fontsize=8)
 display(Markdown("\n".join(rows)))

@@ -16,15 +16,19 @@
 # # 05 — Where the methods fail: the stability atlas in pictures
 #
 # **Question.** Where does each numerical method for `E:diffusion_equ` break down, what does the failure look like,
-# and does persson-fp say so? Five scenes, each computed live on DESIGN's reference problem
+# and does persson-fp say so? Five scenes, each computed live on the reference problem `pf.ContactProblem.reference()`
 # ($\bar p/\sqrt{V(\zeta_{max})}=0.5$, $\zeta_{max}=128$):
 #
 # 1. explicit finite volumes past the stability limit $r=\Delta\tau/(2\Delta p^2)\le r_{lim}$;
-# 2. Crank–Nicolson from a single-cell $\delta$ start (`initial="delta"`, DESIGN §1 option (c)) — ringing, negative $P_0$ —
+# 2. Crank–Nicolson from a single-cell $\delta$ start (`initial="delta"`) — ringing, negative $P_0$ —
 #    and the cures (L-stable TR-BDF2, Rannacher start-up);
 # 3. backward Euler's first-order smearing at coarse steps;
 # 4. method of lines: explicit RK45 against stiff BDF, cost (right-hand-side calls) against grid size;
 # 5. the fudge-factor coupling (`eq:new_B2`): lagged $S(A^*_n)$ against the predictor, error against steps.
+#
+# Equation labels such as `eq:P0_solution` or `E:PSD` and figure numbers refer to Y. Xu, X. Li, Q. Chen and
+# Y. Zhou, "Persson's Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic
+# Process Theory" (the Xu et al. tutorial); all works cited are listed on the documentation's references page.
 
 # %%
 # %matplotlib inline
@@ -163,7 +167,7 @@ print(
 # start-up (the first steps as backward-Euler half steps) damps them; so does TR-BDF2, which from a $\delta$ starts
 # the same way: L-stability alone is not enough, its amplification factor is negative for $\Delta\tau|\lambda| > 2.41$
 # (no second-order one-step scheme is positive at every step size).
-# The remaining $L_1$ error of all three is the one-cell start itself (DESIGN §1: no grid resolves $\delta$).
+# The remaining $L_1$ error of all three is the one-cell start itself (no grid resolves $\delta$).
 
 # %%
 ZS = [2.0, 8.0, 32.0, 128.0]  # the 100 steps are shared out by tau: the first segment is ONE step

@@ -16,7 +16,7 @@
 # # 06 — Spectrum, heights, slopes, $V(\zeta)$ and elastic energy
 #
 # **Question.** What does the surface spectrum put into Persson's theory, and how do you bring your own measured
-# spectrum? We plot the power spectral density (`E:PSD`, seed Fig. A.1), the mean-square height
+# spectrum? We plot the power spectral density (`E:PSD`, the tutorial's Fig. A.1), the mean-square height
 # $\langle h^2\rangle(\zeta)$ (`eq:Vh_closed_form`), the rms slope $\sqrt{\langle|\nabla h|^2\rangle(\zeta)}$
 # (`eq:V_gradient`), the complete-contact pressure variance $V(\zeta)=\tfrac14E^{*2}\langle|\nabla h|^2\rangle$
 # (`eq:VV_relation`, `eq:Vp_closed_form`) and the elastic energy $U_{el}(\bar p)$ (`eq:Uel_original`) with its
@@ -24,6 +24,10 @@
 #
 # The surfaces are those of the boundary-element reference (notebook 09, `data/bem/README.md`): $L=1$,
 # $q_l=2\pi$, $q_r=4\cdot2\pi$, $q_s=64\cdot2\pi$, rms slope 0.1, $E^*=1$; plus the logarithmic limits $H=0$ and $H=1$.
+#
+# Equation labels such as `eq:P0_solution` or `E:PSD` and figure numbers refer to Y. Xu, X. Li, Q. Chen and
+# Y. Zhou, "Persson's Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic
+# Process Theory" (the Xu et al. tutorial); all works cited are listed on the documentation's references page.
 
 # %%
 # %matplotlib inline
@@ -51,7 +55,7 @@ for H, psd in psds.items():
     )
 
 # %% [markdown]
-# ## 1. The PSD (seed Fig. A.1)
+# ## 1. The PSD (the tutorial's Fig. A.1)
 #
 # A plateau $C_0q_r^{-2(1+H)}$ between $q_l$ and the roll-off $q_r$, then the self-affine tail $C_0q^{-2(1+H)}$ up to
 # $q_s=\zeta_{max}q_l$. All four spectra are scaled to the same rms slope 0.1, so the rougher (small-$H$)
@@ -203,7 +207,7 @@ print(f"V: discrete sum in the file {V_file:.5e}, TabulatedPSD {V_tab:.5e} ({V_t
 print(f"   nominal SelfAffinePSD {V_max:.5e}")
 
 fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
-pfplot.plot_psd({"nominal H = 0.8": psd, "measured (seed 1)": measured}, ax=ax0)
+pfplot.plot_psd({"nominal H = 0.8": psd, "measured (one realisation)": measured}, ax=ax0)
 ax0.set_title("realised vs nominal spectrum")
 zs = table["q"][keep] / q_l
 ax1.step(zs, table["V_cum"][keep], where="post", color="0.5", label="V_cum in the file (discrete sum)")

@@ -23,7 +23,11 @@
 # `eq:transition_probability` look like, whose compounding (`E:Compounded_CK`) must give the same answer in one step
 # as in fifty?
 #
-# DESIGN's reference problem, $\bar p/\sqrt{V(\zeta_{max})}=0.5$, no fudge factor (so $\tau=V$).
+# The reference problem `pf.ContactProblem.reference()`, $\bar p/\sqrt{V(\zeta_{max})}=0.5$, no fudge factor (so $\tau=V$).
+#
+# Equation labels such as `eq:P0_solution` or `E:PSD` and figure numbers refer to Y. Xu, X. Li, Q. Chen and
+# Y. Zhou, "Persson's Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic
+# Process Theory" (the Xu et al. tutorial); all works cited are listed on the documentation's references page.
 
 # %%
 # %matplotlib inline
@@ -187,7 +191,7 @@ for k, a in enumerate([0.25, 0.75, 1.5, 3.0]):
 ax.set_xlabel(r"$p/\sqrt{\Delta V}$")
 ax.set_ylabel(r"$P(p,\zeta+\Delta\zeta\,|\,p',\zeta)\sqrt{\Delta V}$")
 ax.set_xlim(-0.3, 6)
-ax.set_title(f"eq:transition_probability, ζ = {z_a:g} → {z_b:g}, ΔV = {dV:.3e} (arrows: atoms at p = 0)")
+ax.set_title(f"transition probability with absorption, ζ = {z_a:g} → {z_b:g}, ΔV = {dV:.3e} (arrows: atoms at p = 0)")
 ax.legend(fontsize=8)
 for (w, _c, q), a in zip(kernel_mass, [0.25, 0.75, 1.5, 3.0]):
     print(f"p' = {a:4g} sqrt(dV): atom {w:.5f} + continuous {q:.5f} (trapezoid) = {w + q:.5f}")

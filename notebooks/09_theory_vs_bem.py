@@ -22,11 +22,15 @@
 #
 # **Reference data** (`data/bem/`, see its README): Tamaas 2.9.0 BEM, periodic square $L=1$, $E^*=1$, self-affine
 # surfaces $H\in\{0.8, 0.3\}$ with $q_l=2\pi$, $q_r=4\cdot2\pi$, $q_s=64\cdot2\pi$, rms slope $\bar g=0.1$ exactly, so
-# $V=0.0025$; three random seeds per $H$; loads $\bar p/(E^*\bar g)\in\{0.005,\dots,0.5\}$. **Accuracy of the reference,
+# $V=0.0025$; three random surface realisations per $H$; loads $\bar p/(E^*\bar g)\in\{0.005,\dots,0.5\}$. **Accuracy of the reference,
 # taken into account below:** $A^*$ converges at first order in the grid spacing, so the production grid $N=1024$ reads
-# *high* (≈1.5–5 %); we compare with the Richardson-extrapolated value. The seeds scatter by up to ≈6 %. Each theory is
+# *high* (≈1.5–5 %); we compare with the Richardson-extrapolated value. The realisations scatter by up to ≈6 %. Each theory is
 # evaluated with the nominal spectrum (`pf.SelfAffinePSD`) and with each surface's realised spectrum (`pf.TabulatedPSD`
 # from `psd_shells_*.csv`).
+#
+# Equation labels such as `eq:P0_solution` or `E:PSD` and figure numbers refer to Y. Xu, X. Li, Q. Chen and
+# Y. Zhou, "Persson's Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic
+# Process Theory" (the Xu et al. tutorial); all works cited are listed on the documentation's references page.
 
 # %%
 # %matplotlib inline
@@ -75,12 +79,12 @@ print("V of every surface:", np.unique(np.round(runs["V"], 12)))
 # Per surface and load: the production value at $N=1024$, and where the resolution runs exist, the first-order
 # Richardson extrapolation $A^*_R = 2A^*_{fine} - A^*_{coarse}$ from the finest pair available ($N$ = 1024/2048, else
 # 512/1024). The observed order $\log_2\frac{A_{512}-A_{1024}}{A_{1024}-A_{2048}}$ checks that the convergence is first
-# order. The **reference** for each $H$ and load is the seed mean at $N=1024$ times the mean Richardson correction factor
-# $A^*_R/A^*_{1024}$ of the seeds that have one; the **seed scatter** is the sample std/mean of the three $N=1024$ values.
+# order. The **reference** for each $H$ and load is the mean over realisations at $N=1024$ times the mean Richardson correction factor
+# $A^*_R/A^*_{1024}$ of the realisations that have one; the **realisation scatter** is the sample std/mean of the three $N=1024$ values.
 
 # %%
 ref, ref_src, scatter, res_err, order = {}, {}, {}, {}, {}
-A1024 = {H: np.array([[bem(H, 1024, s, L) for L in LOADS] for s in SEEDS]) for H in HS}  # (seed, load)
+A1024 = {H: np.array([[bem(H, 1024, s, L) for L in LOADS] for s in SEEDS]) for H in HS}  # (realisation, load)
 for H in HS:
     ref[H], ref_src[H], res_err[H] = np.empty(LOADS.size), [], np.empty(LOADS.size)
     for j, L in enumerate(LOADS):
@@ -97,19 +101,23 @@ for H in HS:
                 order[(H, s, L)] = float(np.log2((a512 - a1024) / (a1024 - a2048)))
         ref[H][j] = A1024[H][:, j].mean() * np.mean(factors)
         res_err[H][j] = 1.0 / np.mean(factors) - 1.0  # how high N = 1024 reads
-        ref_src[H].append(f"{'+'.join(sorted(pairs))} ({len(factors)} seed{'s' if len(factors) > 1 else ''})")
+        ref_src[H].append(f"{'+'.join(sorted(pairs))} ({len(factors)} realisation{'s' if len(factors) > 1 else ''})")
     scatter[H] = A1024[H].std(axis=0, ddof=1) / A1024[H].mean(axis=0)
 
-rows = ["| H | p̄/(E*ḡ) | A* ref (Richardson) | from | N=1024 vs ref | seed scatter |", "|---|---|---|---|---|---|"]
+rows = [
+    "| H | p̄/(E*ḡ) | A* ref (Richardson) | from | N=1024 vs ref | realisation scatter |",
+    "|---|---|---|---|---|---|",
+]
 for H in HS:
     for j, L in enumerate(LOADS):
         rows.append(f"| {H} | {L:g} | {ref[H][j]:.5f} | {ref_src[H][j]} | {res_err[H][j]:+.1%} | {scatter[H][j]:.1%} |")
 display(Markdown("\n".join(rows)))
 print(
-    "observed order of convergence (seed, load): ", {f"H{H} s{s} {L:g}": round(p, 2) for (H, s, L), p in order.items()}
+    "observed order of convergence (realisation, load): ",
+    {f"H{H} s{s} {L:g}": round(p, 2) for (H, s, L), p in order.items()},
 )
 
-# figure: A*(N) relative to the Richardson value from 1024/2048, seed 1, against the grid spacing 1/N
+# figure: A*(N) relative to the Richardson value from 1024/2048, realisation 1, against the grid spacing 1/N
 fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
 for ax, H in zip(axes, HS):
     for L in LOADS:
@@ -121,7 +129,7 @@ for ax, H in zip(axes, HS):
     ax.loglog(h, 0.02 * h / h[0], "k:", lw=0.8, label="first order")
     ax.set_xlabel("grid spacing 1/N  [L]")
     ax.set_ylabel(r"$A^*(N)/A^*_R - 1$")
-    ax.set_title(f"BEM resolution error, H = {H}, seed 1")
+    ax.set_title(f"BEM resolution error, H = {H}, realisation 1")
     ax.grid(lw=0.3, which="both")
     ax.legend(fontsize=7)
 
@@ -130,8 +138,8 @@ for ax, H in zip(axes, HS):
 #
 # $\bar p = (\bar p/E^*\bar g)\,E^*\bar g$. With the nominal spectrum every surface has $V=0.0025$ and one $A^*$ per model;
 # with the realised spectra (`TabulatedPSD`, after dropping the $q=0$ row and the empty shells beyond $q_s$, as in
-# notebook 06) each seed gets its own. Note: at $\zeta_{max}$, $A^*$ and $P_0$ depend on the spectrum **only through
-# $V(\zeta_{max})$** in every model here (DESIGN §1), so the realised spectrum changes them only as much as its
+# notebook 06) each realisation gets its own. Note: at $\zeta_{max}$, $A^*$ and $P_0$ depend on the spectrum **only through
+# $V(\zeta_{max})$** in every model here (`persson_fp.effective`), so the realised spectrum changes them only as much as its
 # continuum $V$ differs from 0.0025 (the shell table integrates to a slightly smaller $V$, see notebook 06).
 
 # %%
@@ -178,7 +186,7 @@ for H in HS:
 #
 # Top: $A^*$ against the load (grey dots: the three BEM surfaces at $N=1024$; black squares: the Richardson reference;
 # lines: theories with the nominal spectrum; shaded: the YP08 band $\gamma$ = 0.42–0.48). Bottom: relative error against the
-# reference; the grey band is the seed scatter (±1 std/mean) and the grey crosses show where plain $N=1024$ BEM would put
+# reference; the grey band is the realisation scatter (±1 std/mean) and the grey crosses show where plain $N=1024$ BEM would put
 # the zero line — the size of the error one makes by comparing with unextrapolated BEM.
 
 # %%
@@ -189,7 +197,7 @@ rel_tab = {(H, m): A_tab[(H, m)] / ref[H] - 1.0 for H in HS for m in MODELS}
 for col, H in enumerate(HS):
     ax, axr = axes[0, col], axes[1, col]
     for s in SEEDS:
-        ax.loglog(LOADS, A1024[H][s - 1], ".", color="0.6", label="BEM N=1024 (3 seeds)" if s == 1 else None)
+        ax.loglog(LOADS, A1024[H][s - 1], ".", color="0.6", label="BEM N=1024 (3 realisations)" if s == 1 else None)
     ax.loglog(LOADS, ref[H], "ks", ms=5, mfc="none", label="BEM Richardson reference")
     ax.fill_between(LOADS, A_nom[(H, "YP08 γ=0.42")], A_nom[(H, "YP08 γ=0.48")], color="C1", alpha=0.25, lw=0)
     axr.fill_between(
@@ -204,7 +212,7 @@ for col, H in enumerate(HS):
     for m, c in colors.items():
         ax.loglog(LOADS, A_nom[(H, m)], "-", color=c, label=m)
         axr.semilogx(LOADS, rel[(H, m)], "o-", ms=3, color=c)
-    axr.fill_between(LOADS, -scatter[H], scatter[H], color="0.5", alpha=0.2, lw=0, label="BEM seed scatter")
+    axr.fill_between(LOADS, -scatter[H], scatter[H], color="0.5", alpha=0.2, lw=0, label="BEM realisation scatter")
     axr.semilogx(LOADS, A1024[H].mean(axis=0) / ref[H] - 1.0, "x", color="0.4", label="BEM N=1024 (unextrapolated)")
     axr.axhline(0.0, color="k", lw=0.8)
     ax.set_title(f"H = {H}")
@@ -236,14 +244,14 @@ for H in HS:
         + f" | {np.mean(np.abs(rel_tab[(H, 'YP08 γ=0.45')])):.1%} |"
     )
     rows.append("| *BEM N=1024 vs ref* | " + " | ".join(f"{v:+.1%}" for v in res_err[H]) + " | |")
-    rows.append("| *BEM seed scatter* | " + " | ".join(f"±{v:.1%}" for v in scatter[H]) + " | |")
+    rows.append("| *BEM realisation scatter* | " + " | ".join(f"±{v:.1%}" for v in scatter[H]) + " | |")
     display(Markdown("\n".join(rows)))
 
 # %% [markdown]
 # ## 4. Pressure variance
 #
 # $\mathrm{Var}(p)$ over the whole interface (zeros included), theory (`eq:variance_p_form1`, `pf.exact(...).variance`)
-# against the BEM's `var_p` (seed mean, $N=1024$; unlike $A^*$ it hardly depends on the grid: compare the `res` rows).
+# against the BEM's `var_p` (mean over realisations, $N=1024$; unlike $A^*$ it hardly depends on the grid: compare the `res` rows).
 
 # %%
 var_bem = {H: np.array([[bem(H, 1024, s, L, "var_p") for L in LOADS] for s in SEEDS]).mean(axis=0) for H in HS}
@@ -268,7 +276,7 @@ for ax, H in zip(axes, HS):
     ax.grid(lw=0.3, which="both")
 axes[0].set_ylabel(r"Var$_{theory}$/Var$_{BEM}$ − 1")
 axes[0].legend(fontsize=8)
-print(f"BEM var_p, N = 2048 vs 1024 (seed 1): at most {var_res:.2%} apart")
+print(f"BEM var_p, N = 2048 vs 1024 (realisation 1): at most {var_res:.2%} apart")
 
 
 # %% [markdown]
@@ -276,7 +284,7 @@ print(f"BEM var_p, N = 2048 vs 1024 (seed 1): at most {var_res:.2%} apart")
 #
 # BEM histograms over the contact points (60 bins of $0.125\sqrt V$; density per unit pressure, so
 # $\sum \text{density}\,\Delta p = A^*$, the atom $1-A^*$ at $p=0$ is not drawn) against the theories' continuous part
-# $P_0(p,\zeta_{max})$ (`eq:P0_solution` at the effective variance). Thin grey: each seed; black: seed mean. Numbers: the
+# $P_0(p,\zeta_{max})$ (`eq:P0_solution` at the effective variance). Thin grey: each realisation; black: their mean. Numbers: the
 # $L^1$ distance $\sum_{bins}|\text{density}_{BEM}-\overline{P_0}|\,\Delta p$ with $\overline{P_0}$ the bin average of the
 # theory (from `ExactSolution.cdf_contact`), once for the densities as they are (includes the area error) and once for
 # the *shapes* $P_0/A^*$ (the PDF of the pressure given contact).
@@ -288,7 +296,7 @@ def bem_hist(H, load):
     sub = pdfs[m]
     lo = np.unique(sub["bin_lo"])
     hi = np.unique(sub["bin_hi"])
-    dens = np.array([sub["density"][sub["seed"] == s] for s in SEEDS])  # (seed, bin)
+    dens = np.array([sub["density"][sub["seed"] == s] for s in SEEDS])  # (realisation, bin)
     return lo, hi, dens
 
 
@@ -363,7 +371,7 @@ for H in HS:
     SUMMARY[f"var_pe_{h}"] = f"{var_rel[(H, 'Persson')][0]:+.0%}"
     SUMMARY[f"var_yp_{h}"] = f"{var_rel[(H, 'YP08 γ=0.45')][0]:+.0%}"
     SUMMARY[f"tab_{h}"] = f"{np.max(np.abs(A_tab[(H, 'YP08 γ=0.45')] / A_nom[(H, 'YP08 γ=0.45')] - 1)):.1%}"
-    # the theories' own seed-to-seed spread (realised spectra, YP08) against the BEM's
+    # the theories' own realisation-to-realisation spread (realised spectra, YP08) against the BEM's
     a = np.array([pf.exact(pf.ContactProblem(tabulated[(H, s)], E_star, p_bar, "YP08")).contact_area for s in SEEDS])
     SUMMARY[f"tabscat_{h}"] = f"{np.max(a.std(axis=0, ddof=1) / a.mean(axis=0)):.1%}"
     # share of the contact points with p < 0.5 sqrt(V) at p/(E* g) = 0.1: BEM, Persson, YP08
@@ -395,7 +403,7 @@ for H in HS:
     assert np.mean(np.abs(rel[(H, "Persson")])) > 2 * max(
         np.mean(np.abs(rel[(H, m)])) for m in ("YP08 γ=0.45", "WM17", "Xu24")
     )
-    # the table's first column, recomputed straight from runs.csv for seed 1 + the mean Richardson factor
+    # the table's first column, recomputed straight from runs.csv for realisation 1 + the mean Richardson factor
     j0 = 0
     assert abs(ref[H][j0] / A1024[H][:, j0].mean() - 1.0 / (1.0 + res_err[H][j0])) < 1e-12
 assert 0.7 < min(order.values()) and max(order.values()) < 1.6  # first-order convergence
@@ -406,7 +414,7 @@ print("all checks passed")
 #
 # * **The reference itself.** The BEM contact area converges at first order (observed orders 0.90–1.29); at the smallest
 #   load the production grid $N=1024$ reads +3.5% (H = 0.8) and +5.6% (H = 0.3) high against the Richardson value,
-#   and the three seeds scatter by up to 5.7% (H = 0.8) and 1.8% (H = 0.3). Errors of a theory smaller than
+#   and the three realisations scatter by up to 5.7% (H = 0.8) and 1.8% (H = 0.3). Errors of a theory smaller than
 #   these few per cent cannot be resolved by this data set.
 # * **Persson's plain theory** underestimates the contact area badly: -27% (H = 0.8) and -30% (H = 0.3) at the
 #   smallest load, still -6.9% / -7.6% at $\bar p/(E^*\bar g)=0.5$ (mean |error| 20.6% / 22.6%).
@@ -414,9 +422,9 @@ print("all checks passed")
 #   8.0% / 5.4%, WM17 3.3% / 3.3%, Xu24 6.0% / 3.5%; closest on average:
 #   WM17 (H = 0.8), YP08 γ=0.48 (H = 0.3). The YP08 band $\gamma$ = 0.42–0.48 spans +12.2% … +5.0% (H = 0.8)
 #   and +7.8% … +0.8% (H = 0.3) at the smallest load: the choice of $\gamma$ moves the answer by about as much as
-#   the BEM's own resolution error and seed scatter.
+#   the BEM's own resolution error and realisation scatter.
 # * **Realised vs nominal spectrum.** Using each surface's measured spectrum (`TabulatedPSD`) moves the YP08 area by at most
-#   0.9% (H = 0.8) / 0.5% (H = 0.3) (at $\zeta_{max}$ only $V$ enters). The theory's seed-to-seed spread with the
+#   0.9% (H = 0.8) / 0.5% (H = 0.3) (at $\zeta_{max}$ only $V$ enters). The theory's realisation-to-realisation spread with the
 #   realised spectra is at most 0.2% / 0.1%, far below the BEM's 5.7% / 1.8%: the theories,
 #   which see only $V$, do not explain the scatter between surfaces.
 # * **Pressure variance.** At the smallest load the plain theory's Var(p) is +31% / +37% off the BEM value

@@ -1,4 +1,4 @@
-r"""Effective variance tau(V) of the fudge-factor theory (DESIGN §1, ``eq:new_B2``).
+r"""Effective variance tau(V) of the fudge-factor theory (Xu et al. tutorial, ``eq:new_B2``).
 
 With :math:`B_2 = S(A^*)\,dV/d\zeta` define :math:`\tau(\zeta) = \int S\,dV`.  In tau
 the equation is the plain heat equation with the same data, so :math:`P_0` is

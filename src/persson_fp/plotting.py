@@ -69,12 +69,13 @@ def plot_solution(sol, ax=None, stations=None):
 
 
 def plot_area_curve(ratio, curves: dict, ax=None, asymptote=True):
-    """A*(p_bar / sqrt(V)) for several models (seed Fig. 5(b)); ``curves`` maps a label to A* values."""
+    """A*(p_bar / sqrt(V)) for several models (Xu et al. tutorial, Fig. 5(b)); ``curves`` maps a label to A* values."""
     fig, ax = _axes(ax)
     for label, A in curves.items():
         ax.plot(ratio, A, label=label)
     if asymptote:
-        ax.plot(ratio, np.minimum(np.sqrt(2 / np.pi) * ratio, 1.0), "k:", lw=0.8, label="eq:Asymptote_1")
+        asymptote = r"small-load asymptote $\sqrt{2/\pi}\,\bar p/\sqrt{V}$"
+        ax.plot(ratio, np.minimum(np.sqrt(2 / np.pi) * ratio, 1.0), "k:", lw=0.8, label=asymptote)
     ax.set_xscale("log")
     ax.set_xlabel(r"$\bar p/\sqrt{V}$")
     ax.set_ylabel(r"$A^*$")
@@ -101,7 +102,9 @@ __all__ += ["plot_psd", "plot_pdf_histogram"]
 
 
 def plot_psd(psds: dict, ax=None, n_q: int = 400, mark_cutoffs: bool = True):
-    """C(q) on log-log axes (seed Fig. A.1); ``psds`` maps a label to a PSD (``SelfAffinePSD`` or ``TabulatedPSD``).
+    """C(q) on log-log axes (Xu et al. tutorial, Fig. A.1).
+
+    ``psds`` maps a label to a PSD (``SelfAffinePSD`` or ``TabulatedPSD``).
 
     A tabulated spectrum is drawn at its table points (markers) plus its log-log interpolant; the cut-offs
     q_l, q_s (and q_r where the PSD has one) of the first spectrum are marked by vertical lines.
@@ -178,7 +181,9 @@ def plot_atom(ax, weight, height, x: float = 0.0, color=None, label=None, text: 
 
 
 def plot_pdf_waterfall(problem: ContactProblem, zetas, ax=None, n_p: int = 300, k: float = 4.0):
-    """Seed Fig. 2(b): the exact P0(p, zeta) as a 3-D waterfall over log10(zeta), p in units of sqrt(V(zeta_max)).
+    """The exact P0(p, zeta) as a 3-D waterfall over log10(zeta) (Xu et al. tutorial, Fig. 2(b)).
+
+    p is drawn in units of sqrt(V(zeta_max)).
 
     The atom 1 - A* at p = 0 (``eq:PDF_piecewise_explicit``) is a vertical stem whose length is its weight
     times the largest P0 drawn; the delta(p - p_bar) of zeta = 1 (weight 1) is drawn the same way when

@@ -1,7 +1,7 @@
 r"""Power spectral densities of isotropic rough surfaces and their moments.
 
 The spectrum enters Persson's theory only through the complete-contact
-pressure variance (seed, Appendix B)
+pressure variance (Xu et al. tutorial, Appendix B)
 
 .. math::
 
@@ -182,7 +182,7 @@ class PSD:
 
 
 class SelfAffinePSD(PSD):
-    r"""Self-affine spectrum with roll-off, ``E:PSD`` of the seed.
+    r"""Self-affine spectrum with roll-off, ``E:PSD`` of the Xu et al. tutorial.
 
     .. math::
 

@@ -1,6 +1,6 @@
 r"""Compounded Chapman--Kolmogorov solver: iterate Dapp's transition density over zeta steps.
 
-The seed's ``E:Compounded_CK`` propagates the pressure PDF from scale to scale
+The Xu et al. tutorial's ``E:Compounded_CK`` propagates the pressure PDF from scale to scale
 with the exact transition density of ``eq:transition_probability``
 (Dapp et al.), an absorbing kernel with no re-entry (``eq:No_reentry``):
 
