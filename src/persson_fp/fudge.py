@@ -16,6 +16,7 @@ model                  S(A*)                                       default gamma
                        A*) V)); as a B2 form S = dtau/dV below
 =====================  ==========================================  =====================
 
+The models are those of Yang and Persson [1]_, Wang and Müser [2]_ and Xu et al. [3]_.
 The Yang--Persson gamma is documented in [0.42, 0.48] (Xu et al. tutorial, Sec.
 "Fudge factors"); note that a published MATLAB implementation of these models uses
 0.42 in its code while its documentation says 0.45 -- here the default is 0.45,

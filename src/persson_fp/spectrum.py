@@ -151,7 +151,7 @@ class PSD:
         """Magnification at which the complete-contact variance reaches ``V`` (pressure^2).
 
         The inverse of :meth:`V` in closed form (the moment of a piecewise power law is inverted
-        piece by piece, :func:`powint_inverse`): 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
+        piece by piece, ``powint_inverse``): 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
         """
         E_star = as_positive_scalar(E_star, "E_star")
         V = np.asarray(as_float_array(V, "V"), dtype=float)

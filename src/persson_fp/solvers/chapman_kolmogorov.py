@@ -17,7 +17,7 @@ contact area after the step.
 Discretisation (what is exact, what is not)
 -------------------------------------------
 * **Grid.** n_p uniform cells on ``[0, p_max]``, ``p_max = max(p_bar) + k_domain
-  sqrt(tau(zeta_max))`` (:meth:`ContactProblem.p_max`, used for sizing only);
+  sqrt(tau(zeta_max))`` (:meth:`~persson_fp.ContactProblem.p_max`, used for sizing only);
   the unknowns are cell averages (``kind = "cell"``).
 * **Cell-exact kernel.** With P0 piecewise constant on the source cells the
   double integral of the Gaussian over (target cell) x (source cell) is exact
