@@ -235,7 +235,7 @@ assert np.all(L1_curves["sines"] < 1e-11) and np.all(L1_curves["chapman-kolmogor
 print("all checks passed")
 
 # %% [markdown]
-# ## What the figures show
+# ## What to take away
 #
 # * **Fig. 5(a).** The Gaussian minus its mirror image is zero at $p=0$ and equals `pf.exact(...).pdf` to 2e-15
 #   for $p>0$. At $\zeta_{max}$ ($\bar p/\sqrt V=0.5$) the contact part keeps $A^*$ = 0.3829; the mirror image has

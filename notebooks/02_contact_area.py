@@ -221,7 +221,7 @@ assert all(0.0 < v < 1.0 for v in var_over_V.values())
 print("all checks passed")
 
 # %% [markdown]
-# ## What the figures show
+# ## What to take away
 #
 # * **Fig. 5(b).** $A^*$ rises linearly from zero and saturates at 1; the curves of all models depend on
 #   $\bar p/\sqrt V$ alone (a different surface, modulus and slope give the same curves to 2e-16). At

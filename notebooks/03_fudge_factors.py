@@ -196,7 +196,7 @@ for label, f in MODELS.items():  # light-load limit 1/sqrt(S(0))
 print("all checks passed")
 
 # %% [markdown]
-# ## What the figures show
+# ## What to take away
 #
 # * **S(A*).** All models start below one at vanishing contact (Yang–Persson at $S(0)=\gamma$) and reach $S(1)=1$; the
 #   documented $\gamma$ range 0.42–0.48 is a narrow band around the default 0.45.

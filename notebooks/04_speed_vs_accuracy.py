@@ -461,7 +461,7 @@ assert bench_machine.startswith("vm: x86_64")
 print("all checks passed")
 
 # %% [markdown]
-# ## What the numbers say
+# ## What to take away
 #
 # * **Committed benchmark** (machine: vm: x86_64, 2 cores, Python 3.11.7, numpy 2.4.6, scipy 1.17.1). Without a fudge factor the fastest run to $L_1\le10^{-5}$ is
 #   sines (0.0712 ms, compile excluded); counting py-pde's per-call compile it is sines (0.0712 ms).

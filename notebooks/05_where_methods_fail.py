@@ -569,7 +569,7 @@ assert coup_match < 1e-3  # live section 5 = committed atlas
 print("all checks passed")
 
 # %% [markdown]
-# ## What the figures show
+# ## What to take away
 #
 # * **Explicit FV.** persson-fp refuses an explicit run past $r=1/3$ with a `ValueError` that names the fix
 #   (here: at least 789 steps). Forced on (`allow_unstable=True`), every run with $r>1/3$ that the table lists

@@ -265,7 +265,7 @@ assert same and abs(V_file - 0.0025) < 1e-12 and abs(V_tab / V_file - 1.0) < 0.0
 print("all checks passed")
 
 # %% [markdown]
-# ## What the figures show
+# ## What to take away
 #
 # * **PSD.** Plateau below the roll-off, power law $q^{-2(1+H)}$ beyond it (exponent checked to round-off); at
 #   equal rms slope the small-$H$ spectra carry more short-wavelength power.

@@ -274,7 +274,7 @@ assert abs(ck1.contact_area[-1] - ex.contact_area) < 1e-12
 print("all checks passed")
 
 # %% [markdown]
-# ## What the figures show
+# ## What to take away
 #
 # * **Sample paths.** Walkers diffuse away from $\bar p$ as $\zeta$ grows and are absorbed at $p=0$; 14 of 40 are still
 #   in contact at $\zeta_{max}$, against $A^*$ = 0.3829 — forty walkers are a picture, not an estimate.

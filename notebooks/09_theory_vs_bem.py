@@ -410,7 +410,7 @@ assert 0.7 < min(order.values()) and max(order.values()) < 1.6  # first-order co
 print("all checks passed")
 
 # %% [markdown]
-# ## What the figures show
+# ## What to take away
 #
 # * **The reference itself.** The BEM contact area converges at first order (observed orders 0.90–1.29); at the smallest
 #   load the production grid $N=1024$ reads +3.5% (H = 0.8) and +5.6% (H = 0.3) high against the Richardson value,
