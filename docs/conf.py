@@ -54,7 +54,7 @@ for _stale in _NB_DST.glob("*.ipynb"):
 # and IDEs (py.typed). Sphinx 9 renders numpy's ArrayLike alias in signatures as a page-long Union.
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"
-autodoc_default_options = {"members": True, "undoc-members": False, "show-inheritance": False}
+autodoc_default_options = {"members": True}
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
