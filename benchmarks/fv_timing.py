@@ -1,4 +1,4 @@
-"""Time-to-accuracy of the finite-volume solver (DESIGN §5): medians of repeated runs.
+"""Time-to-accuracy of the finite-volume solver: medians of repeated runs.
 
 Run ``python benchmarks/fv_timing.py [--repeats 7]``.  Prints one table: scheme, space
 discretisation, stepping, n_p, n_steps, then for the banded path (tridiagonal solves) and the

@@ -1,4 +1,4 @@
-"""Time-to-accuracy of every method on the reference problem (DESIGN §5, issue 5).
+"""Time-to-accuracy of every method on the reference problem.
 
 For the reference problem ``pf.ContactProblem.reference()`` (p_bar = 0.5 sqrt(V(zeta_max))), without
 and with the Yang--Persson fudge factor, every installed method is run over a sweep of its own

@@ -1,4 +1,4 @@
-"""Fudge factors (eq:new_B2) and the effective-variance map (DESIGN §1)."""
+"""Fudge factors (eq:new_B2) and the effective-variance map (persson_fp.effective)."""
 
 import numpy as np
 import pytest

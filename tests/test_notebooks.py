@@ -1,6 +1,9 @@
 """Execute every notebook in notebooks/ (examples are tests: each ends with an assert cell).
 
-Needs the ``notebooks`` extra (nbclient, nbformat, ipykernel); skipped cleanly without it. The kernel is
+The source of each notebook is a jupytext percent script ``notebooks/NN_name.py``; the executed
+``NN_name.ipynb`` beside it is generated from it (CONTRIBUTING.md, "Notebooks") and must hold the same
+cells (``test_script_pairs_with_notebook``). Needs the ``notebooks`` extra (nbclient, nbformat, ipykernel,
+jupytext); skipped cleanly without it. The kernel is
 ``python3``: jupyter_client resolves the native kernel's ``python`` to ``sys.executable``, so the notebooks
 run in the interpreter that runs pytest (checked by ``test_kernel_is_this_interpreter``).
 """
@@ -13,6 +16,7 @@ import pytest
 
 NOTEBOOK_DIR = Path(__file__).resolve().parents[1] / "notebooks"
 NOTEBOOKS = sorted(NOTEBOOK_DIR.glob("*.ipynb"))
+SCRIPTS = sorted(NOTEBOOK_DIR.glob("*.py"))
 CELL_TIMEOUT_S = 120
 
 
@@ -41,6 +45,29 @@ def _summary(nb):
 
 def test_notebooks_found():
     assert NOTEBOOKS, f"no notebooks in {NOTEBOOK_DIR}"
+    # every executed notebook has its jupytext source and every source its executed notebook
+    assert [p.stem for p in NOTEBOOKS] == [p.stem for p in SCRIPTS]
+
+
+def _cells(nb):
+    return [(c.cell_type, c.source, c.metadata.get("tags", [])) for c in nb.cells]
+
+
+@pytest.mark.parametrize("script", SCRIPTS, ids=[p.name for p in SCRIPTS])
+def test_script_pairs_with_notebook(script):
+    """The committed .ipynb was generated from the current .py: same cells, same sources, same tags, in order."""
+    nbformat = pytest.importorskip("nbformat")
+    jupytext = pytest.importorskip("jupytext")
+    from_script = _cells(jupytext.read(script))
+    committed = _cells(nbformat.read(script.with_suffix(".ipynb"), as_version=4))
+    assert len(from_script) == len(committed), f"{script.name}: cell count differs, regenerate the notebook"
+    for i, (a, b) in enumerate(zip(from_script, committed)):
+        assert a == b, f"{script.name}: cell {i} differs from the .ipynb, regenerate it (CONTRIBUTING.md)"
+    nb = nbformat.read(script.with_suffix(".ipynb"), as_version=4)
+    code = [c for c in nb.cells if c.cell_type == "code"]
+    assert all(c.get("outputs") is not None and c.get("execution_count") for c in code if c.source.strip()), (
+        f"{script.with_suffix('.ipynb').name} is committed unexecuted: run the jupytext command in CONTRIBUTING.md"
+    )
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])

@@ -36,7 +36,7 @@ def test_moments_closed_form_vs_quad(H, q_r, zeta):
 
 
 def test_seed_closed_forms():
-    """eq:Vh_closed_form and eq:Vp_closed_form as printed in the seed, 0 < H < 1."""
+    """eq:Vh_closed_form and eq:Vp_closed_form as printed in the Xu et al. tutorial, 0 < H < 1."""
     C0, H, ql, qr, qs, E = 3e-4, 0.7, 2.0, 8.0, 256.0, 1.7
     psd = pf.SelfAffinePSD(C0, H, ql, qr, qs)
     for z in (2.0, 4.0, 100.0):  # below and above the roll-off (zeta_r = 4)
@@ -72,7 +72,7 @@ def test_continuity_at_log_limits(H_limit):
         near = pf.SelfAffinePSD(1e-4, H, 1.0, 3.0, 500.0)
         for k in (1, 2, 3):
             assert near.moment(k, 400.0) == pytest.approx(base.moment(k, 400.0), rel=20 * eps * np.log(500) ** 2)
-    # the H = 1 tail of V is (pi/8) E^2 C0 * 4 ln(zeta q_l / q_r) (DESIGN §1)
+    # the H = 1 tail of V is (pi/8) E^2 C0 * 4 ln(zeta q_l / q_r) (the H -> 1 limit of eq:Vp_closed_form)
     if H_limit == 1.0:
         plateau = np.pi / 8 * base.C0 * 3.0**-4 * (3.0**4 - 1.0)
         assert base.V(400.0) == pytest.approx(plateau + np.pi / 8 * base.C0 * 4 * np.log(400 / 3), rel=1e-13)

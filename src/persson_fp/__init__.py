@@ -1,6 +1,6 @@
 """persson-fp: Persson's theory of elastic rough-surface contact as a PDE problem.
 
-The contact-pressure PDF obeys ``E:diffusion_equ`` of the seed,
+The contact-pressure PDF obeys ``E:diffusion_equ`` of the Xu et al. tutorial,
 dP0/dzeta = 1/2 B2(zeta) d^2P0/dp^2 with an absorbing wall at p = 0; this
 package gives its exact solution (:func:`exact`), the spectrum and fudge-factor
 physics around it, and numerical solvers behind :func:`solve`.

@@ -26,7 +26,7 @@ DESCRIPTION = """\
 persson-fp: Persson's theory of elastic rough-surface contact as a diffusion (Fokker-Planck) problem.
 
 The contact-pressure PDF P0(p, zeta) obeys dP0/dzeta = 1/2 B2 d2P0/dp2 with an absorbing wall at p = 0;
-B2 = S(A*) dV/dzeta, S = 1 in Persson's original theory.  The default surface is DESIGN's reference:
+B2 = S(A*) dV/dzeta, S = 1 in Persson's original theory.  The default surface is the reference problem:
 self-affine, H = 0.8, q_l = 1, q_r = 2, q_s = 128 (zeta_max = 128), rms slope 0.1, E* = 1,
 p_bar = 0.5 sqrt(V(zeta_max)).  Units: any consistent set (the defaults are dimensionless).
 
@@ -42,6 +42,10 @@ examples:
   persson-fp solve --method fv --p-bar-ratio 0.1 0.5 2 --fudge YP08 --output sol.csv
   persson-fp solve --psd-csv my_psd.csv --E-star 2.1e11 --p-bar 1e6 --method sines
   persson-fp area --n-loads 200 --output area/
+
+Equation labels such as eq:Area_Persson or E:PSD are those of Y. Xu, X. Li, Q. Chen, Y. Zhou, "Persson's
+Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic Process Theory".
+Fudge factors: Yang & Persson 2008 (YP08), Wang & Muser 2017 (WM17), Xu et al. 2024 (Xu24).
 """
 
 

@@ -1,4 +1,4 @@
-r"""Effective variance tau(V) of the fudge-factor theory (DESIGN §1, ``eq:new_B2``).
+r"""Effective variance tau(V) of the fudge-factor theory (Xu et al. tutorial, ``eq:new_B2``).
 
 With :math:`B_2 = S(A^*)\,dV/d\zeta` define :math:`\tau(\zeta) = \int S\,dV`.  In tau
 the equation is the plain heat equation with the same data, so :math:`P_0` is
@@ -27,6 +27,7 @@ This module imports no solver.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.integrate import solve_ivp
 from scipy.interpolate import CubicHermiteSpline
 from scipy.special import erf
@@ -81,8 +82,19 @@ class EffectiveVariance:
         self.u_end = float(np.exp(w_end))
         self.slope_end = float(fudge.S(erf(np.exp(-0.5 * w_end) / np.sqrt(2.0))))
 
-    def u_of_v(self, v) -> np.ndarray:
-        """Scaled effective variance u = tau / p_bar^2 at scaled variance v = V / p_bar^2 (v >= 0)."""
+    def u_of_v(self, v: ArrayLike) -> np.ndarray:
+        """Scaled effective variance u = tau / p_bar^2 at scaled variance v = V / p_bar^2.
+
+        Parameters
+        ----------
+        v : array_like, dimensionless
+            Scaled complete-contact variance(s) V / p_bar^2, >= 0.
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            u at each ``v``.
+        """
         v = np.asarray(v, dtype=float)
         if self.identity:
             return v.copy()
@@ -92,8 +104,19 @@ class EffectiveVariance:
         u = np.where(v <= self.v0, self.S1 * v, u)
         return np.where(v > _V_MAX, self.u_end + self.slope_end * (v - _V_MAX), u)
 
-    def v_of_u(self, u) -> np.ndarray:
-        """The inverse map: scaled variance v at scaled effective variance u (u >= 0), same table."""
+    def v_of_u(self, u: ArrayLike) -> np.ndarray:
+        """The inverse of :meth:`u_of_v`: scaled variance v at scaled effective variance u (same table).
+
+        Parameters
+        ----------
+        u : array_like, dimensionless
+            Scaled effective variance(s) tau / p_bar^2, >= 0.
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            v at each ``u``.
+        """
         u = np.asarray(u, dtype=float)
         if self.identity:
             return u.copy()
@@ -102,12 +125,36 @@ class EffectiveVariance:
         v = np.where(u <= _U0, u / self.S1, v)
         return np.where(u > self.u_end, _V_MAX + (u - self.u_end) / self.slope_end, v)
 
-    def w_dense(self, s) -> np.ndarray:
-        """ln u at s = ln v from the ODE solver's own dense output (the reference of the table)."""
+    def w_dense(self, s: ArrayLike) -> np.ndarray:
+        """ln u at s = ln v from the ODE solver's own dense output (the reference of the table).
+
+        Parameters
+        ----------
+        s : array_like, dimensionless
+            ln v, inside the solved range ``[ln(1e-3 / S(1)), ln(1e16)]``.
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            ln u at each ``s``.
+        """
         return self._sol(np.asarray(s, dtype=float))[0]
 
-    def tau(self, p_bar, V) -> np.ndarray:
-        """tau(p_bar, V), broadcast over both (pressure^2)."""
+    def tau(self, p_bar: ArrayLike, V: ArrayLike) -> np.ndarray:
+        """Effective variance tau = int S dV reached at complete-contact variance ``V`` under load ``p_bar``.
+
+        Parameters
+        ----------
+        p_bar : array_like, pressure
+            Nominal pressure(s), > 0.
+        V : array_like, pressure^2
+            Complete-contact variance(s), >= 0; broadcast against ``p_bar``.
+
+        Returns
+        -------
+        numpy.ndarray, pressure^2
+            tau(p_bar, V).
+        """
         p_bar = np.asarray(p_bar, dtype=float)
         V = np.asarray(V, dtype=float)
         if self.identity:
@@ -124,9 +171,21 @@ class EffectiveVariance:
         # A* = 1 branch written without V / p^2, which underflows for huge loads (p_bar ~ 1e150, small V)
         return np.where(V <= self.v0 * p2, self.S1 * V, out)
 
-    def V_of_tau(self, p_bar, tau) -> np.ndarray:
-        """The complete-contact variance V at which the effective variance reaches ``tau`` (inverse of
-        :meth:`tau`), broadcast over both (pressure^2)."""
+    def V_of_tau(self, p_bar: ArrayLike, tau: ArrayLike) -> np.ndarray:
+        """The complete-contact variance V at which the effective variance reaches ``tau`` (inverse of :meth:`tau`).
+
+        Parameters
+        ----------
+        p_bar : array_like, pressure
+            Nominal pressure(s), > 0.
+        tau : array_like, pressure^2
+            Effective variance(s), >= 0; broadcast against ``p_bar``.
+
+        Returns
+        -------
+        numpy.ndarray, pressure^2
+            V(p_bar, tau).
+        """
         p_bar = np.asarray(p_bar, dtype=float)
         tau = np.asarray(tau, dtype=float)
         if self.identity:
@@ -145,7 +204,18 @@ _CACHE: dict = {}
 
 
 def effective_variance(fudge: FudgeFactor) -> EffectiveVariance:
-    """The cached :class:`EffectiveVariance` of ``fudge`` (solved on first use, ~10 ms)."""
+    """The cached :class:`EffectiveVariance` of ``fudge`` (solved on first use, ~10 ms).
+
+    Parameters
+    ----------
+    fudge : FudgeFactor
+        The model S(A*), e.g. from :func:`persson_fp.fudge.resolve`.
+
+    Returns
+    -------
+    EffectiveVariance
+        The map of that model, shared by every caller.
+    """
     try:
         return _CACHE[fudge]
     except KeyError:

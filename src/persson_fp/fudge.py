@@ -16,8 +16,9 @@ model                  S(A*)                                       default gamma
                        A*) V)); as a B2 form S = dtau/dV below
 =====================  ==========================================  =====================
 
-The Yang--Persson gamma is documented in [0.42, 0.48] (seed, Sec. "Fudge
-factors"); note that a published MATLAB implementation of these models uses
+The models are those of Yang and Persson [1]_, Wang and Müser [2]_ and Xu et al. [3]_.
+The Yang--Persson gamma is documented in [0.42, 0.48] (Xu et al. tutorial, Sec.
+"Fudge factors"); note that a published MATLAB implementation of these models uses
 0.42 in its code while its documentation says 0.45 -- here the default is 0.45,
 and it is the value of ``GAMMA_YP08``.
 
@@ -36,6 +37,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.special import erfinv
 
 __all__ = [
@@ -65,18 +67,45 @@ S_MAX = 1e6
 
 
 class FudgeFactor:
-    """Base class: a positive function ``S(A)`` of the relative contact area ``A`` in [0, 1]."""
+    """Base class: a positive function ``S(A)`` of the relative contact area ``A`` in [0, 1].
+
+    A subclass sets ``name`` and implements :meth:`S` (vectorised); :meth:`dS_dA` defaults to central
+    differences and :meth:`check` validates S on a fine grid of [0, 1].
+    """
 
     name: str = "fudge"
 
-    def S(self, A) -> np.ndarray:  # pragma: no cover - abstract
+    def S(self, A: ArrayLike) -> np.ndarray:  # pragma: no cover - abstract
+        r"""The fudge factor S(A*) of ``eq:new_B2``, :math:`B_2 = S(A^*)\,dV/d\zeta`.
+
+        Parameters
+        ----------
+        A : array_like, dimensionless
+            Relative contact area(s) in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            S at each ``A``, finite and > 0.
+        """
         raise NotImplementedError
 
-    def __call__(self, A) -> np.ndarray:
+    def __call__(self, A: ArrayLike) -> np.ndarray:
         return self.S(A)
 
-    def dS_dA(self, A) -> np.ndarray:
-        """Derivative dS/dA (central differences unless a subclass knows it in closed form)."""
+    def dS_dA(self, A: ArrayLike) -> np.ndarray:
+        """Derivative dS/dA (central differences unless a subclass knows it in closed form).
+
+        Parameters
+        ----------
+        A : array_like, dimensionless
+            Relative contact area(s) in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            dS/dA at each ``A``.
+        """
         A = np.asarray(A, dtype=float)
         h = 1e-6
         lo = np.clip(A - h, 0.0, 1.0)
@@ -87,6 +116,16 @@ class FudgeFactor:
         """Raise ``ValueError`` unless S is a number in (0, S_MAX] on a fine grid of [0, 1].
 
         (A physical fudge factor is O(1); the bound keeps tau = int S dV representable.)
+
+        Returns
+        -------
+        None
+            Returns only if S passes.
+
+        Raises
+        ------
+        ValueError
+            Naming the model and the first area at which S is not finite, not > 0 or above ``S_MAX``.
         """
         try:
             with np.errstate(all="ignore"):
@@ -106,14 +145,20 @@ class FudgeFactor:
 
 @dataclass(frozen=True)
 class NoFudge(FudgeFactor):
-    """S = 1: Persson's original theory (``eq:B2_xi_1``)."""
+    """S = 1: Persson's original theory (``eq:B2_xi_1``).
+
+    Parameters
+    ----------
+    name : str
+        Label used in tables, legends and messages.
+    """
 
     name: str = "none"
 
-    def S(self, A):
+    def S(self, A: ArrayLike) -> np.ndarray:
         return np.ones_like(np.asarray(A, dtype=float))
 
-    def dS_dA(self, A):
+    def dS_dA(self, A: ArrayLike) -> np.ndarray:
         return np.zeros_like(np.asarray(A, dtype=float))
 
 
@@ -129,7 +174,15 @@ def _check_gamma(gamma, name, lo, hi):
 
 @dataclass(frozen=True)
 class YangPersson(FudgeFactor):
-    r"""Yang & Persson (2008): :math:`S = \gamma + (1-\gamma) A^{*2}`, gamma in (0, 1]."""
+    r"""Yang & Persson (2008): :math:`S = \gamma + (1-\gamma) A^{*2}`.
+
+    Parameters
+    ----------
+    gamma : float, dimensionless
+        S at vanishing contact, in (0, 1]; default ``GAMMA_YP08`` = 0.45 (documented range 0.42--0.48).
+    name : str
+        Label used in tables, legends and messages.
+    """
 
     gamma: float = GAMMA_YP08
     name: str = "YP08"
@@ -137,17 +190,25 @@ class YangPersson(FudgeFactor):
     def __post_init__(self):
         object.__setattr__(self, "gamma", _check_gamma(self.gamma, "YP08", 0.0, 1.0))
 
-    def S(self, A):
+    def S(self, A: ArrayLike) -> np.ndarray:
         A = np.asarray(A, dtype=float)
         return self.gamma + (1.0 - self.gamma) * A * A
 
-    def dS_dA(self, A):
+    def dS_dA(self, A: ArrayLike) -> np.ndarray:
         return 2.0 * (1.0 - self.gamma) * np.asarray(A, dtype=float)
 
 
 @dataclass(frozen=True)
 class WangMuser(FudgeFactor):
-    r"""Wang & Müser (2017): :math:`S = \gamma - \tfrac29 A^{*2} + (\tfrac{11}{9}-\gamma) A^{*4}`."""
+    r"""Wang & Müser (2017): :math:`S = \gamma - \tfrac29 A^{*2} + (\tfrac{11}{9}-\gamma) A^{*4}`.
+
+    Parameters
+    ----------
+    gamma : float, dimensionless
+        S at vanishing contact, in (0, 11/9] with S > 0 on [0, 1]; default ``GAMMA_WM17`` = 5/9.
+    name : str
+        Label used in tables, legends and messages.
+    """
 
     gamma: float = GAMMA_WM17
     name: str = "WM17"
@@ -156,11 +217,11 @@ class WangMuser(FudgeFactor):
         object.__setattr__(self, "gamma", _check_gamma(self.gamma, "WM17", 0.0, 11.0 / 9.0))
         self.check()
 
-    def S(self, A):
+    def S(self, A: ArrayLike) -> np.ndarray:
         A2 = np.asarray(A, dtype=float) ** 2
         return self.gamma - (2.0 / 9.0) * A2 + (11.0 / 9.0 - self.gamma) * A2 * A2
 
-    def dS_dA(self, A):
+    def dS_dA(self, A: ArrayLike) -> np.ndarray:
         A = np.asarray(A, dtype=float)
         return -(4.0 / 9.0) * A + 4.0 * (11.0 / 9.0 - self.gamma) * A**3
 
@@ -178,6 +239,13 @@ class Xu24(FudgeFactor):
 
     ``pf.exact`` solves the closed form by a robust scalar root find; the PDE
     solvers use this S.  The two agree (a test checks it).
+
+    Parameters
+    ----------
+    gamma : float, dimensionless
+        g(0), in (0, 1]; default ``GAMMA_XU24`` = 0.45.
+    name : str
+        Label used in tables, legends and messages.
     """
 
     gamma: float = GAMMA_XU24
@@ -186,10 +254,22 @@ class Xu24(FudgeFactor):
     def __post_init__(self):
         object.__setattr__(self, "gamma", _check_gamma(self.gamma, "Xu24", 0.0, 1.0))
 
-    def g(self, A):
+    def g(self, A: ArrayLike) -> np.ndarray:
+        r"""The variance factor :math:`g(A) = \gamma + (1-\gamma)A` of the global model.
+
+        Parameters
+        ----------
+        A : array_like, dimensionless
+            Relative contact area(s) in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            g at each ``A``.
+        """
         return self.gamma + (1.0 - self.gamma) * np.asarray(A, dtype=float)
 
-    def S(self, A):
+    def S(self, A: ArrayLike) -> np.ndarray:
         A = np.asarray(A, dtype=float)
         inside = A < 1.0
         with np.errstate(all="ignore"):
@@ -198,8 +278,21 @@ class Xu24(FudgeFactor):
         g = self.g(A)
         return g * g / (g + (1.0 - self.gamma) * term)
 
-    def area(self, p_bar, V) -> np.ndarray:
-        """Solve A = erf(p_bar / sqrt(2 g(A) V)) for A in (0, 1], vectorised (bisection + Newton)."""
+    def area(self, p_bar: ArrayLike, V: ArrayLike) -> np.ndarray:
+        """Solve A = erf(p_bar / sqrt(2 g(A) V)) for A in (0, 1], vectorised (bisection + Newton).
+
+        Parameters
+        ----------
+        p_bar : array_like, pressure
+            Nominal pressure(s), > 0.
+        V : array_like, pressure^2
+            Complete-contact variance(s), >= 0; broadcast against ``p_bar``.
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            The relative contact area A* of the global model, to round-off.
+        """
         from scipy.special import erf
 
         p_bar, V = np.broadcast_arrays(np.asarray(p_bar, float), np.asarray(V, float))
@@ -226,7 +319,15 @@ class Xu24(FudgeFactor):
 
 @dataclass(frozen=True, eq=False)
 class CallableFudge(FudgeFactor):
-    """Wrap a user callable ``S(A)`` (vectorised or scalar), checked finite and > 0 on [0, 1]."""
+    """Wrap a user callable ``S(A)`` (vectorised or scalar), checked finite and > 0 on [0, 1].
+
+    Parameters
+    ----------
+    fn : callable
+        ``fn(A) -> S`` for A* in [0, 1]; called with an array first, element by element if that fails.
+    name : str
+        Label used in tables and messages; default the callable's ``__name__``.
+    """
 
     fn: Callable = None
     name: str = "user"
@@ -238,7 +339,7 @@ class CallableFudge(FudgeFactor):
             object.__setattr__(self, "name", getattr(self.fn, "__name__", "user"))
         self.check()
 
-    def S(self, A):
+    def S(self, A: ArrayLike) -> np.ndarray:
         A = np.asarray(A, dtype=float)
         try:
             out = np.asarray(self.fn(A), dtype=float)
@@ -259,8 +360,25 @@ MODELS = {"none": NoFudge, "YP08": YangPersson, "WM17": WangMuser, "Xu24": Xu24}
 """Fudge-factor models selectable by name."""
 
 
-def resolve(fudge) -> FudgeFactor:
-    """Turn ``None``, a model name, a :class:`FudgeFactor` or a callable into a checked FudgeFactor."""
+def resolve(fudge: None | str | FudgeFactor | Callable) -> FudgeFactor:
+    """Turn ``None``, a model name, a :class:`FudgeFactor` or a callable into a checked FudgeFactor.
+
+    Parameters
+    ----------
+    fudge : None, str, FudgeFactor or callable
+        ``None`` (Persson 2001), a name of ``MODELS`` ("YP08", "WM17", "Xu24", case-insensitive), a
+        fudge-factor instance, or a callable S(A*) > 0 on [0, 1].
+
+    Returns
+    -------
+    FudgeFactor
+        The checked model.
+
+    Raises
+    ------
+    ValueError
+        An unknown name, or an S that is not finite and > 0 on [0, 1].
+    """
     if fudge is None:
         return NoFudge()
     if isinstance(fudge, FudgeFactor):

@@ -6,10 +6,20 @@ the physics and the solvers never do.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .exact import exact
 from .problem import ContactProblem
+
+if TYPE_CHECKING:  # matplotlib is imported only when a figure is drawn
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from .solution import Solution
 
 __all__ = ["plot_exact_pdfs", "plot_solution", "plot_area_curve", "plot_error_vs_time"]
 
@@ -22,8 +32,25 @@ def _axes(ax, figsize=(6.4, 4.2)):
     return ax.figure, ax
 
 
-def plot_exact_pdfs(problem: ContactProblem, zetas, ax=None, n_p: int = 400):
-    """P0(p, zeta) of the image solution (``eq:P0_solution``) at several zeta, p in units of sqrt(V(zeta_max))."""
+def plot_exact_pdfs(problem: ContactProblem, zetas: ArrayLike, ax: Axes | None = None, n_p: int = 400) -> Figure:
+    """P0(p, zeta) of the image solution (``eq:P0_solution``) at several zeta, p in units of sqrt(V(zeta_max)).
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        The problem; its first load is drawn.
+    zetas : array_like, dimensionless
+        Magnifications in [1, zeta_max].
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; default a new figure.
+    n_p : int
+        Number of pressure points per curve.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on.
+    """
     fig, ax = _axes(ax)
     zetas = np.atleast_1d(np.asarray(zetas, float))
     scale = float(np.sqrt(problem.V()))
@@ -50,8 +77,23 @@ def plot_exact_pdfs(problem: ContactProblem, zetas, ax=None, n_p: int = 400):
     return fig
 
 
-def plot_solution(sol, ax=None, stations=None):
-    """Numerical P0 (markers) against the exact solution (lines) at the stations of ``sol``."""
+def plot_solution(sol: Solution, ax: Axes | None = None, stations: Sequence[int] | None = None) -> Figure:
+    """Numerical P0 (markers) against the exact solution (lines) at the stations of ``sol``.
+
+    Parameters
+    ----------
+    sol : Solution
+        A numerical solution from :func:`persson_fp.solve`; its first load is drawn.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; default a new figure.
+    stations : sequence of int, optional
+        Indices of the output stations to draw; default all.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on.
+    """
     fig, ax = _axes(ax)
     scale = float(np.sqrt(sol.problem.V()))
     ref = sol.exact_on_grid()
@@ -68,13 +110,31 @@ def plot_solution(sol, ax=None, stations=None):
     return fig
 
 
-def plot_area_curve(ratio, curves: dict, ax=None, asymptote=True):
-    """A*(p_bar / sqrt(V)) for several models (seed Fig. 5(b)); ``curves`` maps a label to A* values."""
+def plot_area_curve(ratio: ArrayLike, curves: Mapping, ax: Axes | None = None, asymptote: bool = True) -> Figure:
+    """A*(p_bar / sqrt(V)) for several models (Xu et al. tutorial, Fig. 5(b)).
+
+    Parameters
+    ----------
+    ratio : array_like, dimensionless
+        Loads p_bar / sqrt(V).
+    curves : mapping
+        Legend label -> A* at ``ratio``.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; default a new figure.
+    asymptote : bool
+        Also draw the small-load asymptote sqrt(2/pi) p_bar/sqrt(V) (``eq:Asymptote_1``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on.
+    """
     fig, ax = _axes(ax)
     for label, A in curves.items():
         ax.plot(ratio, A, label=label)
     if asymptote:
-        ax.plot(ratio, np.minimum(np.sqrt(2 / np.pi) * ratio, 1.0), "k:", lw=0.8, label="eq:Asymptote_1")
+        label = r"small-load asymptote $\sqrt{2/\pi}\,\bar p/\sqrt{V}$"
+        ax.plot(ratio, np.minimum(np.sqrt(2 / np.pi) * ratio, 1.0), "k:", lw=0.8, label=label)
     ax.set_xscale("log")
     ax.set_xlabel(r"$\bar p/\sqrt{V}$")
     ax.set_ylabel(r"$A^*$")
@@ -82,8 +142,23 @@ def plot_area_curve(ratio, curves: dict, ax=None, asymptote=True):
     return fig
 
 
-def plot_error_vs_time(rows, ax=None, error_key="L1"):
-    """Error (log) against wall time (log), one line per method; ``rows`` are dicts with method, time, error."""
+def plot_error_vs_time(rows: Sequence[Mapping], ax: Axes | None = None, error_key: str = "L1") -> Figure:
+    """Error (log) against wall time (log), one line per method.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Runs, each with keys ``"method"``, ``"time"`` (s) and ``error_key``.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; default a new figure.
+    error_key : str
+        Key of the error to draw.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on.
+    """
     fig, ax = _axes(ax)
     methods = sorted({r["method"] for r in rows})
     for m in methods:
@@ -100,11 +175,27 @@ def plot_error_vs_time(rows, ax=None, error_key="L1"):
 __all__ += ["plot_psd", "plot_pdf_histogram"]
 
 
-def plot_psd(psds: dict, ax=None, n_q: int = 400, mark_cutoffs: bool = True):
-    """C(q) on log-log axes (seed Fig. A.1); ``psds`` maps a label to a PSD (``SelfAffinePSD`` or ``TabulatedPSD``).
+def plot_psd(psds: Mapping, ax: Axes | None = None, n_q: int = 400, mark_cutoffs: bool = True) -> Figure:
+    """C(q) on log-log axes (Xu et al. tutorial, Fig. A.1).
 
     A tabulated spectrum is drawn at its table points (markers) plus its log-log interpolant; the cut-offs
     q_l, q_s (and q_r where the PSD has one) of the first spectrum are marked by vertical lines.
+
+    Parameters
+    ----------
+    psds : mapping
+        Legend label -> spectrum (:class:`~persson_fp.SelfAffinePSD` or :class:`~persson_fp.TabulatedPSD`).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; default a new figure.
+    n_q : int
+        Number of wavenumbers per curve.
+    mark_cutoffs : bool
+        Mark the cut-offs of the first spectrum.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on.
     """
     fig, ax = _axes(ax)
     for k, (label, psd) in enumerate(psds.items()):
@@ -135,11 +226,37 @@ def plot_psd(psds: dict, ax=None, n_q: int = 400, mark_cutoffs: bool = True):
     return fig
 
 
-def plot_pdf_histogram(bin_lo, bin_hi, density, ax=None, scale: float = 1.0, label=None, **kwargs):
+def plot_pdf_histogram(
+    bin_lo: ArrayLike,
+    bin_hi: ArrayLike,
+    density: ArrayLike,
+    ax: Axes | None = None,
+    scale: float = 1.0,
+    label: str | None = None,
+    **kwargs,
+) -> Figure:
     """A pressure histogram (e.g. a boundary-element one) as a step line, p in units of ``scale``.
 
-    ``density`` is per unit pressure (so that sum(density * (bin_hi - bin_lo)) is the contact area);
-    it is drawn as ``density * scale`` against ``p / scale``.
+    Parameters
+    ----------
+    bin_lo, bin_hi : array_like, pressure
+        Lower and upper edges of the bins (contiguous).
+    density : array_like, 1/pressure
+        Probability density per unit pressure, so that ``sum(density * (bin_hi - bin_lo))`` is the
+        contact area; drawn as ``density * scale`` against ``p / scale``.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; default a new figure.
+    scale : float, pressure
+        Pressure unit of the drawing.
+    label : str, optional
+        Legend label.
+    **kwargs
+        Passed on to ``Axes.stairs``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on.
     """
     fig, ax = _axes(ax)
     lo = np.asarray(bin_lo, float) / scale
@@ -154,11 +271,44 @@ def plot_pdf_histogram(bin_lo, bin_hi, density, ax=None, scale: float = 1.0, lab
 __all__ += ["plot_atom", "plot_pdf_waterfall"]
 
 
-def plot_atom(ax, weight, height, x: float = 0.0, color=None, label=None, text: bool = True, fontsize: int = 8):
+def plot_atom(
+    ax: Axes,
+    weight: float,
+    height: float,
+    x: float = 0.0,
+    color: str | None = None,
+    label: str | None = None,
+    text: bool = True,
+    fontsize: int = 8,
+) -> Figure:
     """A delta atom of probability ``weight`` at ``x`` drawn as an arrow of length ``height``, its weight written on it.
 
-    ``height`` is in the axes' data units (choose it proportional to ``weight`` to make lengths comparable,
-    e.g. ``weight * P0_peak``); the axes' data limits are extended to include the arrow.
+    The axes' data limits are extended to include the arrow.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes to draw on.
+    weight : float, dimensionless
+        Probability of the atom (e.g. 1 - A* at p = 0).
+    height : float
+        Arrow length in the axes' data units; choose it proportional to ``weight`` to make lengths
+        comparable, e.g. ``weight * P0_peak``.
+    x : float
+        Position of the atom on the horizontal axis.
+    color : str, optional
+        Matplotlib colour; default "C0".
+    label : str, optional
+        Legend entry for the arrow.
+    text : bool
+        Write the weight next to the arrow head.
+    fontsize : int
+        Font size of that text.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure of ``ax``.
     """
     ax.annotate("", xy=(x, height), xytext=(x, 0.0), arrowprops=dict(arrowstyle="-|>", color=color or "C0", lw=1.6))
     if label is not None:  # a legend entry for the arrow
@@ -177,12 +327,32 @@ def plot_atom(ax, weight, height, x: float = 0.0, color=None, label=None, text: 
     return ax.figure
 
 
-def plot_pdf_waterfall(problem: ContactProblem, zetas, ax=None, n_p: int = 300, k: float = 4.0):
-    """Seed Fig. 2(b): the exact P0(p, zeta) as a 3-D waterfall over log10(zeta), p in units of sqrt(V(zeta_max)).
+def plot_pdf_waterfall(
+    problem: ContactProblem, zetas: ArrayLike, ax: Axes | None = None, n_p: int = 300, k: float = 4.0
+) -> Figure:
+    """The exact P0(p, zeta) as a 3-D waterfall over log10(zeta) (Xu et al. tutorial, Fig. 2(b)).
 
-    The atom 1 - A* at p = 0 (``eq:PDF_piecewise_explicit``) is a vertical stem whose length is its weight
-    times the largest P0 drawn; the delta(p - p_bar) of zeta = 1 (weight 1) is drawn the same way when
-    ``zetas`` contains 1.  Returns the figure; the axes must be 3-D if given.
+    p is drawn in units of sqrt(V(zeta_max)). The atom 1 - A* at p = 0 (``eq:PDF_piecewise_explicit``) is
+    a vertical stem whose length is its weight times the largest P0 drawn; the delta(p - p_bar) of
+    zeta = 1 (weight 1) is drawn the same way when ``zetas`` contains 1.
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        The problem; its first load is drawn.
+    zetas : array_like, dimensionless
+        Magnifications in [1, zeta_max].
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D, optional
+        3-D axes to draw on; default a new figure.
+    n_p : int
+        Number of pressure points per curve.
+    k : float
+        The pressure axis reaches p_bar + k sqrt(V(zeta_max)).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn on.
     """
     import matplotlib.pyplot as plt
 

@@ -1,7 +1,7 @@
 r"""Power spectral densities of isotropic rough surfaces and their moments.
 
 The spectrum enters Persson's theory only through the complete-contact
-pressure variance (seed, Appendix B)
+pressure variance (Xu et al. tutorial, Appendix B)
 
 .. math::
 
@@ -21,7 +21,10 @@ This module imports no solver.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._validate import as_float_array, as_positive_scalar, check_in_range
 
@@ -104,28 +107,92 @@ class PSD:
         """Largest magnification ``q_s / q_l`` (dimensionless)."""
         return self.q_s / self.q_l
 
-    def check_zeta(self, zeta, name: str = "zeta") -> np.ndarray:
-        """Validate magnifications: finite and in ``[1, zeta_max]``."""
+    def check_zeta(self, zeta: ArrayLike, name: str = "zeta") -> np.ndarray:
+        """Validate magnifications: finite and in ``[1, zeta_max]``.
+
+        Parameters
+        ----------
+        zeta : array_like, dimensionless
+            Magnifications to check.
+        name : str
+            Parameter name quoted in the error message.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``zeta`` as a float array.
+
+        Raises
+        ------
+        ValueError
+            If a value is not finite or lies outside ``[1, zeta_max]``.
+        """
         return check_in_range(zeta, name, 1.0, self.zeta_max)
 
-    def C(self, q) -> np.ndarray:  # pragma: no cover - abstract
-        """Spectrum C(q) (length^4); zero outside ``[q_l, q_s]``."""
+    def C(self, q: ArrayLike) -> np.ndarray:  # pragma: no cover - abstract
+        """Spectrum C(q) (``E:PSD``); zero outside ``[q_l, q_s]``.
+
+        Parameters
+        ----------
+        q : array_like, 1/length
+            Wavenumbers.
+
+        Returns
+        -------
+        numpy.ndarray, length^4
+            C at ``q``, same shape as ``q``.
+        """
         raise NotImplementedError
 
-    def moment(self, k: float, zeta=None) -> np.ndarray:  # pragma: no cover - abstract
-        r""":math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq` (length^(k+5))."""
+    def moment(self, k: float, zeta: ArrayLike | None = None) -> np.ndarray:  # pragma: no cover - abstract
+        r"""Spectral moment :math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq`.
+
+        Parameters
+        ----------
+        k : float
+            Power of q.
+        zeta : array_like, optional, dimensionless
+            Upper magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
+
+        Returns
+        -------
+        numpy.ndarray, length^(3-k)
+            The moment at each ``zeta``.
+        """
         raise NotImplementedError
 
     # -- derived quantities -------------------------------------------------
     def _zeta(self, zeta):
         return self.zeta_max if zeta is None else self.check_zeta(zeta)
 
-    def h2(self, zeta=None) -> np.ndarray:
-        r"""Mean-square height :math:`\langle h^2\rangle(\zeta)` (length^2), ``eq:Vh_closed_form``."""
+    def h2(self, zeta: ArrayLike | None = None) -> np.ndarray:
+        r"""Mean-square height :math:`\langle h^2\rangle(\zeta) = 2\pi\int q C\,dq` (``eq:Vh_closed_form``).
+
+        Parameters
+        ----------
+        zeta : array_like, optional, dimensionless
+            Magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
+
+        Returns
+        -------
+        numpy.ndarray, length^2
+            Mean-square height of the wavenumbers up to ``zeta q_l``.
+        """
         return 2.0 * np.pi * self.moment(1, zeta)
 
-    def grad2(self, zeta=None) -> np.ndarray:
-        r"""Mean-square slope :math:`\langle|\nabla h|^2\rangle(\zeta)`, ``eq:V_gradient``."""
+    def grad2(self, zeta: ArrayLike | None = None) -> np.ndarray:
+        r"""Mean-square slope :math:`\langle|\nabla h|^2\rangle(\zeta) = 2\pi\int q^3 C\,dq` (``eq:V_gradient``).
+
+        Parameters
+        ----------
+        zeta : array_like, optional, dimensionless
+            Magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            Mean-square slope of the wavenumbers up to ``zeta q_l``.
+        """
         return 2.0 * np.pi * self.moment(3, zeta)
 
     @property
@@ -138,20 +205,44 @@ class PSD:
         """Root-mean-square slope over the whole band (dimensionless)."""
         return float(np.sqrt(self.grad2()))
 
-    def V(self, zeta=None, E_star: float = 1.0) -> np.ndarray:
-        r"""Complete-contact pressure variance :math:`V(\zeta)` (pressure^2).
+    def V(self, zeta: ArrayLike | None = None, E_star: float = 1.0) -> np.ndarray:
+        r"""Complete-contact pressure variance :math:`V(\zeta)`.
 
         ``eq:Vp_closed_form`` / ``eq:VV_relation``:
         :math:`V = \tfrac14 E^{*2}\langle|\nabla h|^2\rangle`.
+
+        Parameters
+        ----------
+        zeta : array_like, optional, dimensionless
+            Magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
+        E_star : float, pressure
+            Effective modulus (> 0).
+
+        Returns
+        -------
+        numpy.ndarray, pressure^2
+            V at each ``zeta``.
         """
         E_star = as_positive_scalar(E_star, "E_star")
         return 0.25 * E_star**2 * self.grad2(zeta)
 
-    def zeta_of_V(self, V, E_star: float = 1.0) -> np.ndarray:
-        """Magnification at which the complete-contact variance reaches ``V`` (pressure^2).
+    def zeta_of_V(self, V: ArrayLike, E_star: float = 1.0) -> np.ndarray:
+        """Magnification at which the complete-contact variance reaches ``V``.
 
         The inverse of :meth:`V` in closed form (the moment of a piecewise power law is inverted
-        piece by piece, :func:`powint_inverse`): 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
+        piece by piece, ``powint_inverse``).
+
+        Parameters
+        ----------
+        V : array_like, pressure^2
+            Complete-contact pressure variance(s).
+        E_star : float, pressure
+            Effective modulus (> 0).
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            zeta with V(zeta) = ``V``: 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
         """
         E_star = as_positive_scalar(E_star, "E_star")
         V = np.asarray(as_float_array(V, "V"), dtype=float)
@@ -160,29 +251,69 @@ class PSD:
         z = np.clip(self.moment_inverse(3, M) / self.q_l, 1.0, self.zeta_max)
         return np.where(M >= M_max, self.zeta_max, np.where(M <= 0.0, 1.0, z))
 
-    def moment_inverse(self, k: float, M) -> np.ndarray:  # pragma: no cover - abstract
-        r"""The upper limit q with :math:`\int_{q_l}^{q} q'^k C(q')\,dq' = M` (1/length)."""
+    def moment_inverse(self, k: float, M: ArrayLike) -> np.ndarray:  # pragma: no cover - abstract
+        r"""The upper limit q with :math:`\int_{q_l}^{q} q'^k C(q')\,dq' = M`.
+
+        Parameters
+        ----------
+        k : float
+            Power of q, as in :meth:`moment`.
+        M : array_like, length^(3-k)
+            Target moment(s) in ``[0, moment(k)]``.
+
+        Returns
+        -------
+        numpy.ndarray, 1/length
+            The wavenumber(s) at which the moment reaches ``M``.
+        """
         raise NotImplementedError
 
-    def dV_dzeta(self, zeta=None, E_star: float = 1.0) -> np.ndarray:
-        r""":math:`dV/d\zeta = \frac{\pi}{2} E^{*2} q_l q^3 C(q)`, :math:`q = \zeta q_l` (``eq:dVdxi``)."""
+    def dV_dzeta(self, zeta: ArrayLike | None = None, E_star: float = 1.0) -> np.ndarray:
+        r"""Growth rate of the variance, :math:`dV/d\zeta = \frac{\pi}{2} E^{*2} q_l q^3 C(q)` at :math:`q = \zeta q_l`.
+
+        This is the diffusion coefficient :math:`B_2` of Persson's theory (``eq:dVdxi``, ``eq:B2_xi_1``).
+
+        Parameters
+        ----------
+        zeta : array_like, optional, dimensionless
+            Magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
+        E_star : float, pressure
+            Effective modulus (> 0).
+
+        Returns
+        -------
+        numpy.ndarray, pressure^2
+            dV/dzeta at each ``zeta``.
+        """
         E_star = as_positive_scalar(E_star, "E_star")
         z = np.asarray(self._zeta(zeta), dtype=float)
         q = z * self.q_l
         return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(q)
 
-    def elastic_energy_complete(self, zeta=None, E_star: float = 1.0) -> np.ndarray:
-        r"""Elastic energy per nominal area at complete contact (pressure x length).
+    def elastic_energy_complete(self, zeta: ArrayLike | None = None, E_star: float = 1.0) -> np.ndarray:
+        r"""Elastic energy per nominal area at complete contact.
 
         ``eq:Uel_complete_2`` divided by :math:`A_n`:
         :math:`U_{el}/A_n = \frac{\pi}{2} E^* \int_{q_l}^{\zeta q_l} q^2 C(q)\,dq`.
+
+        Parameters
+        ----------
+        zeta : array_like, optional, dimensionless
+            Magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
+        E_star : float, pressure
+            Effective modulus (> 0).
+
+        Returns
+        -------
+        numpy.ndarray, pressure x length
+            Elastic energy per unit nominal area.
         """
         E_star = as_positive_scalar(E_star, "E_star")
         return 0.5 * np.pi * E_star * self.moment(2, zeta)
 
 
 class SelfAffinePSD(PSD):
-    r"""Self-affine spectrum with roll-off, ``E:PSD`` of the seed.
+    r"""Self-affine spectrum with roll-off, ``E:PSD`` of the Xu et al. tutorial.
 
     .. math::
 
@@ -228,8 +359,21 @@ class SelfAffinePSD(PSD):
         return f"SelfAffinePSD(C0={self.C0!r}, H={self.H!r}, q_l={self.q_l!r}, q_r={self.q_r!r}, q_s={self.q_s!r})"
 
     @classmethod
-    def from_rms_slope(cls, rms_slope: float, H: float, q_l: float, q_r: float, q_s: float):
-        """Spectrum whose rms slope over ``[q_l, q_s]`` is ``rms_slope`` (dimensionless, > 0)."""
+    def from_rms_slope(cls, rms_slope: float, H: float, q_l: float, q_r: float, q_s: float) -> SelfAffinePSD:
+        """Spectrum whose rms slope over ``[q_l, q_s]`` is ``rms_slope``.
+
+        Parameters
+        ----------
+        rms_slope : float, dimensionless
+            Root-mean-square slope (> 0).
+        H, q_l, q_r, q_s : float
+            As for :class:`SelfAffinePSD`.
+
+        Returns
+        -------
+        SelfAffinePSD
+            The spectrum with ``C0`` chosen for that slope.
+        """
         rms_slope = as_positive_scalar(rms_slope, "rms_slope")
         unit = cls(1.0, H, q_l, q_r, q_s)
         with np.errstate(over="ignore"):
@@ -239,8 +383,21 @@ class SelfAffinePSD(PSD):
         return cls(C0, H, q_l, q_r, q_s)
 
     @classmethod
-    def from_rms_height(cls, rms_height: float, H: float, q_l: float, q_r: float, q_s: float):
-        """Spectrum whose rms height over ``[q_l, q_s]`` is ``rms_height`` (length, > 0)."""
+    def from_rms_height(cls, rms_height: float, H: float, q_l: float, q_r: float, q_s: float) -> SelfAffinePSD:
+        """Spectrum whose rms height over ``[q_l, q_s]`` is ``rms_height``.
+
+        Parameters
+        ----------
+        rms_height : float, length
+            Root-mean-square height (> 0).
+        H, q_l, q_r, q_s : float
+            As for :class:`SelfAffinePSD`.
+
+        Returns
+        -------
+        SelfAffinePSD
+            The spectrum with ``C0`` chosen for that height.
+        """
         rms_height = as_positive_scalar(rms_height, "rms_height")
         unit = cls(1.0, H, q_l, q_r, q_s)
         with np.errstate(over="ignore"):
@@ -254,7 +411,7 @@ class SelfAffinePSD(PSD):
         """Magnification of the roll-off, ``q_r / q_l``."""
         return self.q_r / self.q_l
 
-    def C(self, q) -> np.ndarray:
+    def C(self, q: ArrayLike) -> np.ndarray:
         q = as_float_array(q, "q")
         plateau = self.C0 * self.q_r ** (-2.0 * (1.0 + self.H))
         with np.errstate(divide="ignore"):
@@ -262,9 +419,24 @@ class SelfAffinePSD(PSD):
         inside = (q >= self.q_l) & (q <= self.q_s)
         return np.where(inside, np.where(q < self.q_r, plateau, tail), 0.0)
 
-    def moment(self, k: float, zeta=None) -> np.ndarray:
-        r""":math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq` in closed form (``eq:Vh_closed_form``,
-        ``eq:Vp_closed_form`` for k = 1, 3), exact also in the logarithmic limits."""
+    def moment(self, k: float, zeta: ArrayLike | None = None) -> np.ndarray:
+        r"""Spectral moment :math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq` in closed form.
+
+        ``eq:Vh_closed_form`` and ``eq:Vp_closed_form`` for k = 1, 3, exact also in the logarithmic
+        limits H = 0 and H = 1.
+
+        Parameters
+        ----------
+        k : float
+            Power of q.
+        zeta : array_like, optional, dimensionless
+            Upper magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
+
+        Returns
+        -------
+        numpy.ndarray, length^(3-k)
+            The moment at each ``zeta``.
+        """
         z = np.asarray(self._zeta(zeta), dtype=float)
         q_hi = z * self.q_l
         q_mid = np.minimum(q_hi, self.q_r)
@@ -273,7 +445,7 @@ class SelfAffinePSD(PSD):
         tail = self.C0 * powint(self.q_r, tail_hi, k - 1.0 - 2.0 * self.H)
         return plateau + tail
 
-    def moment_inverse(self, k: float, M) -> np.ndarray:
+    def moment_inverse(self, k: float, M: ArrayLike) -> np.ndarray:
         M = np.asarray(M, dtype=float)
         c_plateau = self.C0 * self.q_r ** (-2.0 * (1.0 + self.H))
         M_r = c_plateau * powint(self.q_l, self.q_r, k + 1.0)  # the plateau's share
@@ -300,7 +472,7 @@ class TabulatedPSD(PSD):
         Band limits inside ``[q[0], q[-1]]``; default the table's ends.
     """
 
-    def __init__(self, q, C, q_l: float | None = None, q_s: float | None = None):
+    def __init__(self, q: ArrayLike, C: ArrayLike, q_l: float | None = None, q_s: float | None = None):
         q = as_float_array(q, "q")
         C = as_float_array(C, "C")
         if q.ndim != 1 or C.ndim != 1:
@@ -331,10 +503,28 @@ class TabulatedPSD(PSD):
         return f"TabulatedPSD(<{self.q.size} points>, q_l={self.q_l!r}, q_s={self.q_s!r})"
 
     @classmethod
-    def from_csv(cls, path, q_column: str = "q", C_column: str = "C", **kwargs):
+    def from_csv(cls, path: str | os.PathLike, q_column: str = "q", C_column: str = "C", **kwargs) -> TabulatedPSD:
         """Read a spectrum from a CSV file with a header row naming ``q_column`` and ``C_column``.
 
-        Rows with non-finite, zero or negative values raise a ``ValueError`` naming the line.
+        Parameters
+        ----------
+        path : str or path-like
+            The CSV file.
+        q_column, C_column : str
+            Header names of the wavenumber (1/length) and spectrum (length^4) columns.
+        **kwargs
+            Passed on to :class:`TabulatedPSD` (``q_l``, ``q_s``).
+
+        Returns
+        -------
+        TabulatedPSD
+            The tabulated spectrum.
+
+        Raises
+        ------
+        ValueError
+            A missing column, or a row with a non-numeric, non-finite, zero or negative value (the
+            message names the line).
         """
         import csv
 
@@ -360,7 +550,7 @@ class TabulatedPSD(PSD):
     def _slopes(self):
         return np.diff(np.log(self.values)) / np.diff(np.log(self.q))
 
-    def C(self, q) -> np.ndarray:
+    def C(self, q: ArrayLike) -> np.ndarray:
         q = as_float_array(q, "q")
         inside = (q >= self.q_l) & (q <= self.q_s)
         qc = np.clip(q, self.q[0], self.q[-1])
@@ -381,7 +571,7 @@ class TabulatedPSD(PSD):
         full = self._segment_moment(k, seg, nodes[:-1], nodes[1:])
         return nodes, seg, np.concatenate(([0.0], np.cumsum(full)))
 
-    def moment_inverse(self, k: float, M) -> np.ndarray:
+    def moment_inverse(self, k: float, M: ArrayLike) -> np.ndarray:
         M = np.asarray(M, dtype=float)
         nodes, seg, cum = self._band(k)
         j = np.clip(np.searchsorted(cum, M, side="right") - 1, 0, nodes.size - 2)
@@ -392,8 +582,21 @@ class TabulatedPSD(PSD):
         r = powint_inverse(1.0, (M - cum[j]) / (C_lo * q0 ** (k + 1.0)), k + 1.0 + s)
         return np.minimum(q0 * r, nodes[j + 1])
 
-    def moment(self, k: float, zeta=None) -> np.ndarray:
-        r"""Exact :math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq` of the log-log interpolant."""
+    def moment(self, k: float, zeta: ArrayLike | None = None) -> np.ndarray:
+        r"""Spectral moment :math:`\int_{q_l}^{\zeta q_l} q^k C(q)\,dq`, exact for the log-log interpolant.
+
+        Parameters
+        ----------
+        k : float
+            Power of q.
+        zeta : array_like, optional, dimensionless
+            Upper magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
+
+        Returns
+        -------
+        numpy.ndarray, length^(3-k)
+            The moment at each ``zeta``.
+        """
         z = np.asarray(self._zeta(zeta), dtype=float)
         q_hi = z * self.q_l
         nodes, seg, cum = self._band(k)  # q_l, the table points strictly inside, q_s

@@ -8,8 +8,15 @@ nothing unless used (cf. ``scipy.integrate.solve_ivp``'s ``METHODS``).
 from __future__ import annotations
 
 import importlib
+from typing import TYPE_CHECKING
 
 from .base import SHARED_KNOBS, Solver, SolverOutput
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from ..problem import ContactProblem
+    from ..solution import Solution
 
 __all__ = ["METHODS", "EXTRAS", "solve", "get_solver", "available_methods", "Solver", "SolverOutput", "SHARED_KNOBS"]
 
@@ -28,8 +35,26 @@ EXTRAS = {"py-pde": ("pde", "pde"), "fipy": ("fipy", "fipy")}
 """Method name -> (import name of the third-party package, pip extra of persson-fp)."""
 
 
-def get_solver(method) -> type[Solver]:
-    """The solver class of ``method`` (a name from ``METHODS`` or a :class:`Solver` subclass)."""
+def get_solver(method: str | type[Solver]) -> type[Solver]:
+    """The solver class of ``method`` (a name from ``METHODS`` or a :class:`Solver` subclass).
+
+    Parameters
+    ----------
+    method : str or Solver subclass
+        A name from ``METHODS`` or a solver class (returned as it is).
+
+    Returns
+    -------
+    type
+        The solver class; its module is imported now.
+
+    Raises
+    ------
+    ValueError
+        An unknown method name (the message lists the valid ones).
+    ImportError
+        The method's optional package is missing (the message names the pip extra).
+    """
     if isinstance(method, type) and issubclass(method, Solver):
         return method
     if method not in METHODS:
@@ -56,6 +81,11 @@ def available_methods() -> list[str]:
     """Names of the methods that are built and whose optional packages are installed.
 
     Looks the modules up without importing them, so that asking is cheap (py-pde imports numba).
+
+    Returns
+    -------
+    list of str
+        Method names usable with :func:`solve`, in the order of ``METHODS``.
     """
     from importlib.util import find_spec
 
@@ -69,7 +99,13 @@ def available_methods() -> list[str]:
     return out
 
 
-def solve(problem, method="fv", zeta_out=None, tol=None, **options):
+def solve(
+    problem: ContactProblem,
+    method: str | type[Solver] = "fv",
+    zeta_out: ArrayLike | None = None,
+    tol: float | None = None,
+    **options,
+) -> Solution:
     """Solve Persson's diffusion problem numerically and return a :class:`~persson_fp.Solution`.
 
     Parameters

@@ -1,6 +1,6 @@
 r"""Compounded Chapman--Kolmogorov solver: iterate Dapp's transition density over zeta steps.
 
-The seed's ``E:Compounded_CK`` propagates the pressure PDF from scale to scale
+The Xu et al. tutorial's ``E:Compounded_CK`` propagates the pressure PDF from scale to scale
 with the exact transition density of ``eq:transition_probability``
 (Dapp et al.), an absorbing kernel with no re-entry (``eq:No_reentry``):
 
@@ -17,7 +17,7 @@ contact area after the step.
 Discretisation (what is exact, what is not)
 -------------------------------------------
 * **Grid.** n_p uniform cells on ``[0, p_max]``, ``p_max = max(p_bar) + k_domain
-  sqrt(tau(zeta_max))`` (:meth:`ContactProblem.p_max`, used for sizing only);
+  sqrt(tau(zeta_max))`` (:meth:`~persson_fp.ContactProblem.p_max`, used for sizing only);
   the unknowns are cell averages (``kind = "cell"``).
 * **Cell-exact kernel.** With P0 piecewise constant on the source cells the
   double integral of the Gaussian over (target cell) x (source cell) is exact

@@ -1,4 +1,4 @@
-r"""Persson's diffusion equation driven through FiPy (the generic finite-volume tool).
+r"""Persson's diffusion equation driven through FiPy [1]_ (the generic finite-volume tool).
 
 The method
 ----------
@@ -84,7 +84,7 @@ class FiPySolver(Solver):
     pcg_tol : float, default 1e-12
         Relative residual of "pcg".
     sweep_tol : float, default 1e-8
-        Sweeps of the fudge factor stop when |A*_used - A*_produced| <= sweep_tol (about 2 linear
+        Sweeps of the fudge factor stop when ``|A*_used - A*_produced| <= sweep_tol`` (about 2 linear
         solves per step; the A* error left, <= sweep_tol per step, is far below the truncation error).
     max_sweeps : int, default 10
         Cap on sweeps per step (hitting it is counted in ``info["sweeps_capped"]``).
