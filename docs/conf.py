@@ -77,11 +77,6 @@ def _numpydoc_citation(name: str) -> str:
 
 
 PENDING_DOCSTRING_FIXES = [
-    ("persson_fp.exact.ExactSolution", "Title underline too short"),
-    ("persson_fp.solution.Comparison", 'Undefined substitution referenced: "P0 - P0_exact"'),
-    ("persson_fp.solution.Comparison", 'Undefined substitution referenced: "A*_num - A*_exact"'),
-    ("persson_fp.solution.Comparison", 'Undefined substitution referenced: "int p P0 dp - p_bar"'),
-    ("persson_fp.solution.Comparison", 'Undefined substitution referenced: "A*(integral) - A*(boundary flux)"'),
     ("persson_fp.Comparison.area_z_score", 'Undefined substitution referenced: "A*_num - A*_exact"'),
     ("persson_fp.solvers.fv", "Unexpected indentation"),
     ("persson_fp.solvers.fv", "Block quote ends without a blank line"),

@@ -40,6 +40,8 @@ class FokkerPlanckProblem(ContactProblem):
         ``None``: 0.
     B2 : callable or None, pressure^2 per unit zeta
         Diffusion ``B2(p, zeta) >= 0``, vectorised in p.  ``None``: the homogenised dV/dzeta.
+    fudge : None
+        Must be None (B2 says everything about the diffusion; multiply a fudge factor into B2 if wanted).
 
     Raises
     ------
@@ -86,10 +88,39 @@ class FokkerPlanckProblem(ContactProblem):
         return True
 
     def with_loads(self, p_bar) -> FokkerPlanckProblem:
+        """The same surface, coefficients and hardness with other load(s).
+
+        Parameters
+        ----------
+        p_bar : float or 1-D array, pressure
+            The new nominal pressure(s).
+
+        Returns
+        -------
+        FokkerPlanckProblem
+        """
         return FokkerPlanckProblem(self.psd, self.E_star, p_bar, self.B1_fun, self.B2_fun, self.hardness)
 
     def coefficients(self, p, zeta: float):
-        """(B1, B2) at pressures ``p`` (array) and magnification ``zeta``, checked (``ValueError`` naming where)."""
+        """The coefficients at pressures ``p`` and magnification ``zeta``, checked.
+
+        Parameters
+        ----------
+        p : array, pressure
+            Pressures (any shape).
+        zeta : float
+            Magnification.
+
+        Returns
+        -------
+        (ndarray, ndarray)
+            B1 (pressure per unit zeta) and B2 (pressure^2 per unit zeta), the shape of ``p``.
+
+        Raises
+        ------
+        ValueError
+            A non-finite value, a negative B2 or a coefficient that is not vectorised, naming where.
+        """
         p = np.asarray(p, dtype=float)
         z = float(zeta)
         out = []

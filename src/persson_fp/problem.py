@@ -216,7 +216,18 @@ class ContactProblem:
         return self.hardness is not None and not self.hardness.is_constant
 
     def sigma_Y(self, zeta=None) -> np.ndarray:
-        """Hardness sigma_Y(zeta) (pressure); inf without a hardness."""
+        """Hardness sigma_Y at magnification(s) ``zeta``.
+
+        Parameters
+        ----------
+        zeta : float or array, optional
+            Magnification(s); default ``zeta_max``.
+
+        Returns
+        -------
+        ndarray
+            sigma_Y (pressure), the shape of ``zeta``; inf without a hardness.
+        """
         z = self.zeta_max if zeta is None else zeta
         if self.hardness is None:
             return np.full(np.shape(z), np.inf)

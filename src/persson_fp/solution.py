@@ -44,14 +44,14 @@ class Comparison:
 
     Attributes
     ----------
-    L1 : int |P0 - P0_exact| dp (dimensionless)
-    Linf : max |P0 - P0_exact| (1/pressure)
-    area_error : |A*_num - A*_exact|
-    load_drift : |int p P0 dp - p_bar| / p_bar
-    mass_balance : |A*(integral) - A*(boundary flux)| where the method tracks the flux, else NaN
+    L1 : int ``|P0 - P0_exact|`` dp (dimensionless)
+    Linf : max ``|P0 - P0_exact|`` (1/pressure)
+    area_error : ``|A*_num - A*_exact|``
+    load_drift : ``|int p P0 dp - p_bar|`` / p_bar
+    mass_balance : ``|A*(integral) - A*(boundary flux)|`` where the method tracks the flux, else NaN
     reference : "cell averages" or "point values" -- what the numerical P0 was compared with
-    elastic_area_error, plastic_area_error, noncontact_area_error : |A_el - exact|, |A_pl - exact|,
-        |A_non - exact| (with a hardness wall; else None)
+    elastic_area_error, plastic_area_error, noncontact_area_error : ``|A_el - exact|``, ``|A_pl - exact|``,
+        ``|A_non - exact|`` (with a hardness wall; else None)
     """
 
     zeta: np.ndarray
@@ -299,6 +299,7 @@ class Solution:
 
     @property
     def elastic_load_all(self) -> np.ndarray:
+        """F_el = int p P0 dp (pressure), shape (n_zeta, n_loads)."""
         return self._moment(1)
 
     @property
@@ -403,10 +404,10 @@ class Solution:
     def error_estimate(self) -> dict:
         """The error of this result at every station and load, whatever the problem.
 
-        Keys ``"L1"`` (int |P0 - P0_ref| dp) and ``"contact_area"`` (and, with a hardness, ``"elastic_area"``,
+        Keys ``"L1"`` (``int |P0 - P0_ref| dp``) and ``"contact_area"`` (and, with a hardness, ``"elastic_area"``,
         ``"plastic_area"``, ``"noncontact_area"``), arrays of shape (n_zeta, n_loads), and ``"kind"``: where a closed
         form exists the *true* error against :func:`persson_fp.exact`; otherwise (a moving yield wall, general
-        coefficients) the solver's own estimate, |result - result at half the resolution| (conservative: 3x the
+        coefficients) the solver's own estimate, ``|result - result at half the resolution|`` (conservative: 3x the
         error of a second-order method in its asymptotic range); for Monte Carlo the standard error of A* is
         added as ``"stderr_area"``.  Computed once and kept in ``info["error_estimate_view"]``.
         """

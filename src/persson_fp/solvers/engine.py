@@ -1,6 +1,6 @@
 r"""The general finite-volume engine: conservative fluxes on a cell grid, wall objects, time integrators.
 
-The DST fast path of ``"fv"`` (:mod:`persson_fp.solvers.fv_spectral`) is exact only for the constant-coefficient
+The DST fast path of ``"fv"`` (``persson_fp.solvers.fv_spectral``) is exact only for the constant-coefficient
 heat equation between two fixed absorbing walls.  Everything else -- a moving yield wall, and (in time)
 p-dependent coefficients -- is solved here, in conservative form on ``n`` uniform cells of a coordinate
 :math:`x \in [0, 1]`:
@@ -12,15 +12,15 @@ with the cell averages :math:`w_i` as unknowns, face fluxes
 per wall that keeps what the wall absorbs.  The walls are small objects that supply their face flux as a linear
 function of the neighbouring unknowns (cf. py-pde's boundary classes: the operator never asks which wall it is):
 
-- :class:`AbsorbingWall` at x = 0 (:math:`w = 0`; the odd ghost cell :math:`-w_0`, exact for the image solution's
+- ``AbsorbingWall`` at x = 0 (:math:`w = 0`; the odd ghost cell :math:`-w_0`, exact for the image solution's
   odd symmetry, so the wall costs no order).  What leaves through it is the non-contact area :math:`A_{non}`.
-- :class:`YieldWall` at x = 1 with the Dirichlet value :math:`w_b = \beta\,a`, where a is the wall's own unknown
+- ``YieldWall`` at x = 1 with the Dirichlet value :math:`w_b = \beta\,a`, where a is the wall's own unknown
   (the plastic area :math:`A_{pl}`) and :math:`da/dt = G_{n-1/2}`; the derivative at the wall by the one-sided
   second-order formula :math:`(8w_b - 9w_{n-1} + w_{n-2})/(3h)`.  :math:`\beta = 0` is a fixed absorbing yield wall.
 
 The state is :math:`y = (w_0, \dots, w_{n-1}, a)` and :math:`\dot y = L(t)\,y` with L banded (2 sub-, 1
 super-diagonal).  Because every face flux appears once with each sign, :math:`\sum_i w_i h + a + A_{non}` is
-conserved to round-off by any linear time integrator; :func:`march` advances it with TR-BDF2 (L-stable, second
+conserved to round-off by any linear time integrator; ``march`` advances it with TR-BDF2 (L-stable, second
 order; Bank et al. 1985) or a θ-scheme, with the operator re-assembled at each stage time, and accumulates the
 flux through x = 0 with the same stage weights so that the balance closes exactly.
 

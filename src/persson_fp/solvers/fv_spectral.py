@@ -76,7 +76,7 @@ _TRAJECTORY_TOL = 1e-14
 
 # -- the spectral fast path: L and M are diagonal in the DST-II basis ------------------------------
 def dst_eigenvalues(n_p: int, dp: float, space: str = "fv2"):
-    r"""Eigenvalues of L (:func:`banded_operator`) and of M (:func:`apply_mass`) in the DST-II basis.
+    r"""Eigenvalues of L (:func:`banded_operator`) and of M (``apply_mass``) in the DST-II basis.
 
     Both are diagonalised *exactly* by the orthonormal cell-centred sines
     :math:`\phi_j(i) \propto \sin(\pi j (i+\tfrac12)/n_p)`, j = 1..n_p (odd about both walls, so the
