@@ -7,6 +7,7 @@ physics around it, and numerical solvers behind :func:`solve`.
 """
 
 from . import fudge
+from .conventions import CONVENTIONS, abel_factor, abel_forward, abel_inverse
 from .effective import EffectiveVariance, effective_variance
 from .exact import (
     ExactSolution,
@@ -18,9 +19,18 @@ from .exact import (
     variance_closed_form,
 )
 from .problem import ContactProblem
+from .separation import WEIGHTINGS, MeanSeparation, contact_stiffness, mean_separation
 from .solution import Comparison, InstabilityError, Solution, SolverError
 from .solvers import METHODS, available_methods, solve
 from .spectrum import PSD, SelfAffinePSD, TabulatedPSD
+from .surface import (
+    MeasuredSurface,
+    from_surface_topography,
+    psd_from_heightmap,
+    psd_from_profiles,
+    read_contact_engineering_csv,
+    read_heightmap,
+)
 
 __version__ = "0.1.0"
 
@@ -47,4 +57,18 @@ __all__ = [
     "solve",
     "available_methods",
     "__version__",
+    "CONVENTIONS",
+    "abel_factor",
+    "abel_forward",
+    "abel_inverse",
+    "WEIGHTINGS",
+    "MeanSeparation",
+    "mean_separation",
+    "contact_stiffness",
+    "MeasuredSurface",
+    "psd_from_heightmap",
+    "psd_from_profiles",
+    "read_heightmap",
+    "read_contact_engineering_csv",
+    "from_surface_topography",
 ]
