@@ -60,6 +60,7 @@ WEIGHTINGS = ("yang-persson", "corrected-area")
 """Energy weightings for fudge-factor models (see the module docstring); the first is the default."""
 
 _Y_MIN, _N_TAB = 1e-9, 6000
+_CHUNK = 512
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(12)
 _SQRT_2_PI = np.sqrt(2.0 / np.pi)
 
@@ -222,10 +223,13 @@ class MeanSeparation:
             raise ValueError(f"p_bar must be > 0 (pressure), got {float(np.min(p))!r}")
         return p
 
-    def _apply(self, f, p_bar):
-        p = self._loads(p_bar)
-        y = p.reshape(-1, 1) / self.sigma[None, :]
-        return (f(y) @ self._w_ds).reshape(p.shape)
+    def _apply(self, f, p_bar, extra=None):
+        p = self._loads(p_bar).reshape(-1)
+        w = self._w_ds if extra is None else self._w_ds * extra
+        out = np.empty(p.size)
+        for i in range(0, p.size, _CHUNK):  # blocks of loads keep the (loads x nodes) array small
+            out[i : i + _CHUNK] = f(p[i : i + _CHUNK, None] / self.sigma[None, :]) @ w
+        return out.reshape(np.shape(p_bar))
 
     def mean_separation(self, p_bar) -> np.ndarray:
         r""":math:`\bar u(\bar p)` (length), any array shape of loads (pressure, > 0)."""
@@ -233,9 +237,7 @@ class MeanSeparation:
 
     def energy(self, p_bar) -> np.ndarray:
         r"""Elastic energy per nominal area :math:`U(\bar p)` (pressure x length) in this weighting."""
-        p = self._loads(p_bar)
-        y = p.reshape(-1, 1) / self.sigma[None, :]
-        return ((self._w.omega(y) * self.sigma) @ self._w_ds).reshape(p.shape)
+        return self._apply(self._w.omega, p_bar, extra=self.sigma)
 
     def dU_dp(self, p_bar) -> np.ndarray:
         r""":math:`dU/d\bar p` (length)."""
