@@ -81,7 +81,7 @@ def compare():
 
 
 def summary(rows):
-    """Mean |relative error| per model and spectrum, and the per-load seed means."""
+    """Mean |relative error| per model and spectrum, and the per-load means over the surfaces."""
     out = {}
     for label, _, _ in MODELS:
         for spectrum in ("nominal", "realised"):
