@@ -63,11 +63,16 @@ def build(name, cells, closing_template):
     path = NB_DIR / f"{name}.ipynb"
     nbformat.write(nb2, path)
     # lint/format the sources in place (import sorting, line wrapping: semantics unchanged, outputs stay valid)
+    import shutil
     import subprocess
+    import sys
 
-    ruff = "/work/main/.venv/bin/ruff"
-    subprocess.run([ruff, "check", "--fix", "-q", str(path)], cwd="/work/main", check=False)
-    subprocess.run([ruff, "format", "-q", str(path)], cwd="/work/main", check=True)
-    subprocess.run([ruff, "check", "-q", str(path)], cwd="/work/main", check=False)
+    # ruff of the interpreter's environment (else the one on PATH), with the repository's configuration
+    ruff = str(Path(sys.executable).parent / "ruff")
+    ruff = ruff if Path(ruff).exists() else shutil.which("ruff")
+    repo = NB_DIR.parent
+    subprocess.run([ruff, "check", "--fix", "-q", str(path)], cwd=repo, check=False)
+    subprocess.run([ruff, "format", "-q", str(path)], cwd=repo, check=True)
+    subprocess.run([ruff, "check", "-q", str(path)], cwd=repo, check=False)
     print(f"{path}: executed in {t1:.1f} s and {t2:.1f} s; {path.stat().st_size / 1e3:.0f} kB")
     print(json.dumps(summary, indent=1, ensure_ascii=False))
