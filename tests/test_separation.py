@@ -153,3 +153,29 @@ def test_bem_mean_gaps_table():
     assert err[("YP08 γ=0.45, yang-persson", "nominal")] == pytest.approx(0.083, abs=0.001)
     assert err[("YP08 γ=0.45, corrected-area", "nominal")] == pytest.approx(0.140, abs=0.001)
     assert err[("WM17, yang-persson", "nominal")] == pytest.approx(0.044, abs=0.001)
+
+
+def test_separation_from_area_histories_exact_and_numerical():
+    """u from A*(zeta; p_bar) histories (the route for problems without a closed form) against MeanSeparation
+    (corrected-area weighting, the same energy): trapezoid in V over 100 stations and a spline over 60 loads."""
+    z = np.geomspace(1.0, PSD.zeta_max, 100)
+    p = SV * np.geomspace(1e-3, 6.0, 60)
+    pr = pf.ContactProblem(PSD, 1.0, p, "YP08")
+    U, u = pf.separation_from_areas(PSD, 1.0, p, z, pf.exact(pr, z).contact_area, "YP08")
+    ms = pf.MeanSeparation(PSD, 1.0, "YP08", weighting="corrected-area")
+    m = p < 2 * SV  # beyond, u < 1e-3 of its light-load value and the spline's relative error grows
+    # grid-limited: measured max 3.8e-3 (the lightest loads, where A* falls inside the first V interval)
+    np.testing.assert_allclose(u[m], ms.mean_separation(p[m]), rtol=6e-3)
+    np.testing.assert_allclose(U[p > 0.01 * SV], ms.energy(p[p > 0.01 * SV]), rtol=6e-3)
+    # a numerical Solution's histories give what the exact ones give on the same grids (sines: ~1e-12)
+    z = np.geomspace(1.5, PSD.zeta_max, 30)
+    p = SV * np.geomspace(0.05, 4.0, 8)
+    pr = pf.ContactProblem(PSD, 1.0, p, "YP08")
+    sol = pf.solve(pr, method="sines", zeta_out=z)
+    _, u_num = pf.separation_from_areas(PSD, 1.0, p, sol.zeta, sol.contact_area_all, "YP08")
+    _, u_ex = pf.separation_from_areas(PSD, 1.0, p, z, pf.exact(pr, z).contact_area, "YP08")
+    np.testing.assert_allclose(u_num[:-1], u_ex[:-1], rtol=1e-8)
+    with pytest.raises(ValueError, match="shape"):
+        pf.separation_from_areas(PSD, 1.0, p, z, np.ones((3, 3)))
+    with pytest.raises(ValueError, match="increasing"):
+        pf.separation_from_areas(PSD, 1.0, p[::-1], z, np.ones((z.size, p.size)))

@@ -19,7 +19,7 @@ from .exact import (
     variance_closed_form,
 )
 from .problem import ContactProblem
-from .separation import WEIGHTINGS, MeanSeparation, contact_stiffness, mean_separation
+from .separation import WEIGHTINGS, MeanSeparation, contact_stiffness, mean_separation, separation_from_areas
 from .solution import Comparison, InstabilityError, Solution, SolverError
 from .solvers import METHODS, available_methods, solve
 from .spectrum import PSD, SelfAffinePSD, TabulatedPSD
@@ -65,6 +65,7 @@ __all__ = [
     "MeanSeparation",
     "mean_separation",
     "contact_stiffness",
+    "separation_from_areas",
     "MeasuredSurface",
     "psd_from_heightmap",
     "psd_from_profiles",

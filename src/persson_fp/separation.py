@@ -54,7 +54,7 @@ from ._validate import as_float_array, as_positive_scalar
 from .effective import effective_variance
 from .spectrum import PSD
 
-__all__ = ["WEIGHTINGS", "MeanSeparation", "mean_separation", "contact_stiffness"]
+__all__ = ["WEIGHTINGS", "MeanSeparation", "mean_separation", "contact_stiffness", "separation_from_areas"]
 
 WEIGHTINGS = ("yang-persson", "corrected-area")
 """Energy weightings for fudge-factor models (see the module docstring); the first is the default."""
@@ -273,3 +273,70 @@ def contact_stiffness(problem, weighting: str = "yang-persson") -> np.ndarray:
     ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
     out = ms.stiffness(problem.p_bar)
     return float(out[0]) if problem.scalar_load else out
+
+
+def separation_from_areas(psd: PSD, E_star, p_bar, zeta, A, fudge=None):
+    r"""Energy and mean separation from contact-area histories :math:`A^*(\zeta_i; \bar p_j)` on a grid of loads.
+
+    For problems without a closed form (a numerical :class:`~persson_fp.Solution` of every load, e.g. with
+    other coefficients or walls): :math:`U_j = \frac{1}{E^*}\int W\,dV/q` with the corrected-area weighting
+    :math:`W = A^*S(A^*)` (``eq:Uel_original``; trapezoidal rule in V over the stations, V = 0 and A* = 1 added at
+    zeta = 1), then :math:`\bar u_j = \int_{\bar p_j}^{\infty} U/p^2\,dp - U_j/\bar p_j`, written with the energy
+    deficit :math:`D = U_{full} - U` (no cancellation near full contact), a cubic spline of :math:`D/\bar p` in
+    :math:`\ln\bar p`, and D taken constant beyond the largest load, where therefore :math:`\bar u = 0`: that
+    load should be near full contact.
+    Accuracy follows the grids (tests: ~1e-3 relative on 100 stations x 60 loads against :class:`MeanSeparation`).
+
+    Parameters
+    ----------
+    psd : PSD
+    E_star : float, pressure
+    p_bar : array_like, shape (n_loads,), pressure
+        Strictly increasing loads (>= 3), > 0.
+    zeta : array_like, shape (n_zeta,)
+        Increasing output magnifications in [1, zeta_max] (>= 2).
+    A : array_like, shape (n_zeta, n_loads)
+        Contact areas at those stations and loads, in [0, 1].
+    fudge : None, str, FudgeFactor or callable
+        The S(A*) of the energy weighting (None: S = 1).
+
+    Returns
+    -------
+    U, u : ndarray, shape (n_loads,)
+        Energy per nominal area (pressure x length) and mean separation (length).
+    """
+    from scipy.interpolate import CubicSpline
+
+    if not isinstance(psd, PSD):
+        raise ValueError(f"psd must be a persson_fp PSD, got {type(psd).__name__}")
+    E_star = as_positive_scalar(E_star, "E_star")
+    p = as_float_array(p_bar, "p_bar")
+    z = psd.check_zeta(as_float_array(zeta, "zeta"))
+    A = as_float_array(A, "A")
+    if p.ndim != 1 or p.size < 3 or np.any(p <= 0) or np.any(np.diff(p) <= 0):
+        raise ValueError("p_bar must be a strictly increasing 1-D array of >= 3 loads > 0")
+    if z.ndim != 1 or z.size < 2 or np.any(np.diff(z) <= 0):
+        raise ValueError("zeta must be a strictly increasing 1-D array of >= 2 magnifications")
+    if A.shape != (z.size, p.size):
+        raise ValueError(f"A must have shape (n_zeta, n_loads) = {(z.size, p.size)}, got {A.shape}")
+    if np.any(A < 0) or np.any(A > 1 + 1e-12):
+        raise ValueError("A must lie in [0, 1]")
+    S = _fudge.resolve(fudge).S
+    if z[0] > 1.0:  # zeta = 1: V = 0, full contact
+        z = np.concatenate(([1.0], z))
+        A = np.concatenate((np.ones((1, p.size)), A))
+    V = psd.V(z, E_star)
+    q = (z * psd.q_l)[:, None]
+
+    def trapezoid(f):
+        return np.sum(0.5 * np.diff(V)[:, None] * (f[1:] + f[:-1]), axis=0) / E_star
+
+    U = trapezoid(A * S(A) / q)
+    # the deficit D = U_full - U, computed from S(1) - A S(A) (no cancellation near full contact):
+    # u_j = int_{p_j}^inf (U - U_j)/p^2 dp = D_j/p_j - int_{p_j}^inf D/p^2 dp, D constant beyond p_max
+    D = trapezoid((S(np.ones_like(A)) - A * S(A)) / q)
+    t = np.log(p)
+    spline = CubicSpline(t, D * np.exp(-t))  # int D/p^2 dp = int (D/p) d ln p
+    inner = np.array([spline.integrate(ti, t[-1]) for ti in t])
+    u = D / p - inner - D[-1] / p[-1]
+    return U, u
