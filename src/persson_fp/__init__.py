@@ -7,6 +7,7 @@ physics around it, and numerical solvers behind :func:`solve`.
 """
 
 from . import fudge, hardness
+from .conventions import CONVENTIONS, abel_factor, abel_forward, abel_inverse
 from .effective import EffectiveVariance, effective_variance
 from .exact import (
     ExactSolution,
@@ -19,9 +20,18 @@ from .exact import (
 )
 from .fokker_planck import FokkerPlanckProblem
 from .problem import ContactProblem
+from .separation import WEIGHTINGS, MeanSeparation, contact_stiffness, mean_separation, separation_from_areas
 from .solution import Comparison, InstabilityError, Solution, SolverError
 from .solvers import METHODS, available_methods, solve
 from .spectrum import PSD, SelfAffinePSD, TabulatedPSD
+from .surface import (
+    MeasuredSurface,
+    from_surface_topography,
+    psd_from_heightmap,
+    psd_from_profiles,
+    read_contact_engineering_csv,
+    read_heightmap,
+)
 
 __version__ = "0.1.0"
 
@@ -50,4 +60,19 @@ __all__ = [
     "solve",
     "available_methods",
     "__version__",
+    "CONVENTIONS",
+    "abel_factor",
+    "abel_forward",
+    "abel_inverse",
+    "WEIGHTINGS",
+    "MeanSeparation",
+    "mean_separation",
+    "contact_stiffness",
+    "separation_from_areas",
+    "MeasuredSurface",
+    "psd_from_heightmap",
+    "psd_from_profiles",
+    "read_heightmap",
+    "read_contact_engineering_csv",
+    "from_surface_topography",
 ]

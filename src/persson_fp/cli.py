@@ -35,6 +35,8 @@ commands:
            solvers checked against the exact solution (--all-methods adds py-pde and FiPy), PNG figures
   solve    solve one problem (your surface and loads) with a chosen method; CSV/JSON/PNG output
   area     the contact-area curve A*(p_bar) for a range of loads, every fudge model (CSV + PNG)
+  surface  a measured surface (height map or contact.engineering CSV) -> spectrum, A*, mean separation,
+           stiffness for a range of loads, every fudge model (CSV + PNG)
 
 examples:
   persson-fp
@@ -42,6 +44,7 @@ examples:
   persson-fp solve --method fv --p-bar-ratio 0.1 0.5 2 --fudge YP08 --output sol.csv
   persson-fp solve --psd-csv my_psd.csv --E-star 2.1e11 --p-bar 1e6 --method sines
   persson-fp area --n-loads 200 --output area/
+  persson-fp surface heights.npy --size 1e-3 --E-star 2.1e11 --output surf/
 
 Equation labels such as eq:Area_Persson or E:PSD are those of Y. Xu, X. Li, Q. Chen, Y. Zhou, "Persson's
 Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic Process Theory".
@@ -292,7 +295,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="persson-fp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("--version", action="version", version=f"persson-fp {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="{report,solve,area}")
+    sub = parser.add_subparsers(dest="command", metavar="{report,solve,area,surface}")
 
     rep = sub.add_parser("report", help="exact table + solver check + figures (the default)")
     _add_problem_args(rep)
@@ -322,6 +325,10 @@ def build_parser() -> argparse.ArgumentParser:
     ar.add_argument("--ratio-max", type=float, default=3.0, help="largest p_bar/sqrt(V) (default 3)")
     ar.add_argument("--output", default="persson-fp-output", help="folder for CSV/PNG")
     ar.set_defaults(func=cmd_area)
+
+    from . import cli_surface
+
+    cli_surface.add_parser(sub)
     return parser
 
 

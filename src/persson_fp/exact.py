@@ -117,7 +117,8 @@ class ExactSolution:
     - ``tau``: Effective variance (pressure^2); equals V without a fudge factor.
     - ``contact_area``: A* = erf(p_bar / sqrt(2 tau)) (Eq. 'eq:Area_Persson'); with a hardness A_el + A_pl.
     - ``atom``: 1 - A*, the probability of p = 0, computed as erfc (Eq. 'eq:PDF_piecewise_explicit').
-    - ``elastic_area, plastic_area, noncontact_area``: A_el, A_pl, A_non (they sum to 1); without a hardness A_el = A* and A_pl = 0, with a constant hardness the strip series of :mod:`persson_fp.strip`.
+    - ``elastic_area, plastic_area, noncontact_area``: A_el, A_pl, A_non (they sum to 1); without a hardness
+      A_el = A* and A_pl = 0, with a constant hardness the strip series of :mod:`persson_fp.strip`.
     - ``elastic_load, plastic_load``: F_el = int p P0 dp and F_pl = sigma_Y A_pl (pressure); F_el + F_pl = p_bar.
     - ``area_asymptote``: sqrt(2/pi) p_bar / sqrt(tau), the small-load limit (Eq. 'eq:Asymptote_1').
     - ``variance``: Var(p) (pressure^2), Eq. 'eq:variance_p_form1' (int A* dtau with a fudge factor).

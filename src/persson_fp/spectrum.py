@@ -469,10 +469,34 @@ class TabulatedPSD(PSD):
     C : array_like, length^4
         Spectrum values > 0 at ``q`` (same convention as ``E:PSD``).
     q_l, q_s : float, optional
-        Band limits inside ``[q[0], q[-1]]``; default the table's ends.
+        Band limits inside ``[q[0], q[-1]]`` (after conversion to rad/length); default the table's ends.
+    convention : str, optional
+        What ``C`` is (:mod:`persson_fp.conventions`): ``"persson"`` (default, as above), ``"iso2d"``
+        (2-D FFT / SurfaceTopography ``power_spectrum_from_area``, :math:`C_{iso} = (2\pi)^2 C`),
+        ``"1d"`` (1-D PSD of line scans, Abel-inverted) or ``"q/pi*2d"`` (contact.engineering's
+        "q/π × 2D PSD" series).  The table is converted once; :attr:`convention` records the input's.
+    q_unit : str, optional
+        ``"rad/length"`` (default, q = 2 pi / wavelength) or ``"1/length"`` (1 / wavelength, densities
+        per unit 1/wavelength).
+    H : float, optional
+        ``convention="1d"`` only: convert with the Abel factor of this Hurst exponent instead of the
+        numerical inversion.
     """
 
-    def __init__(self, q: ArrayLike, C: ArrayLike, q_l: float | None = None, q_s: float | None = None):
+    def __init__(
+        self,
+        q: ArrayLike,
+        C: ArrayLike,
+        q_l: float | None = None,
+        q_s: float | None = None,
+        *,
+        convention: str = "persson",
+        q_unit: str = "rad/length",
+        H: float | None = None,
+    ):
+        from .conventions import check_convention, to_persson
+
+        convention, q_unit = check_convention(convention, q_unit)
         q = as_float_array(q, "q")
         C = as_float_array(C, "C")
         if q.ndim != 1 or C.ndim != 1:
@@ -489,6 +513,16 @@ class TabulatedPSD(PSD):
         if np.any(C <= 0):
             i = int(np.argmax(C <= 0))
             raise ValueError(f"C must be > 0 everywhere (log-log interpolation); C[{i}] = {C[i]!r}")
+        if convention != "persson" or q_unit != "rad/length":
+            q, C = to_persson(q, C, convention, q_unit, H)
+            if np.any(C <= 0):  # only the numerical Abel inversion of a rising 1-D PSD can do this
+                i = int(np.argmax(C <= 0))
+                raise ValueError(
+                    f"the Abel inversion of the 1-D PSD gives C <= 0 at q = {q[i]!r} (the 1-D PSD rises there); "
+                    "smooth it or pass H= to convert with the power-law factor"
+                )
+        elif H is not None:
+            raise ValueError("H is used only with convention='1d' (Abel factor)")
         q_l = float(q[0]) if q_l is None else float(check_in_range(q_l, "q_l", q[0], q[-1], rtol=0.0))
         q_s = float(q[-1]) if q_s is None else float(check_in_range(q_s, "q_s", q[0], q[-1], rtol=0.0))
         if not q_s > q_l:
@@ -497,10 +531,14 @@ class TabulatedPSD(PSD):
         self.values = C.copy()
         self.q_l = q_l
         self.q_s = q_s
+        self.convention = convention if q_unit == "rad/length" else f"{convention}, q in {q_unit}"
         self._freeze()
 
     def __repr__(self):
-        return f"TabulatedPSD(<{self.q.size} points>, q_l={self.q_l!r}, q_s={self.q_s!r})"
+        return (
+            f"TabulatedPSD(<{self.q.size} points>, q_l={self.q_l!r}, q_s={self.q_s!r}, "
+            f"convention={self.convention!r}, rms_height={self.rms_height:.6g}, rms_slope={self.rms_slope:.6g})"
+        )
 
     @classmethod
     def from_csv(cls, path: str | os.PathLike, q_column: str = "q", C_column: str = "C", **kwargs) -> TabulatedPSD:
@@ -513,7 +551,7 @@ class TabulatedPSD(PSD):
         q_column, C_column : str
             Header names of the wavenumber (1/length) and spectrum (length^4) columns.
         **kwargs
-            Passed on to :class:`TabulatedPSD` (``q_l``, ``q_s``).
+            Passed on to :class:`TabulatedPSD` (``q_l``, ``q_s``, ``convention``, ``q_unit``, ``H``).
 
         Returns
         -------

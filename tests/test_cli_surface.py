@@ -1,0 +1,93 @@
+"""``persson-fp surface``: a height map and a contact.engineering export in, CSV with units and PNG out."""
+
+import os
+
+import numpy as np
+import pytest
+
+import persson_fp as pf
+from persson_fp.cli import main
+
+DATA = os.path.join(os.path.dirname(__file__), "..", "data", "bem")
+
+
+def _bem_map(N=128):
+    d = np.load(os.path.join(DATA, "surfaces", "surface_H0.8_seed1_modes.npz"))
+    A = np.zeros((N, N), complex)
+    A[np.ix_(d["k"] % N, d["k"] % N)] = d["hq"]
+    return np.real(np.fft.ifft2(A) * N * N)
+
+
+def _read_csv(path):
+    lines = open(path).read().splitlines()
+    header = [ln for ln in lines if ln.startswith("#")]
+    rows = [ln.split(",") for ln in lines if not ln.startswith("#")]
+    return header, rows[0], np.array(rows[1:], dtype=float)
+
+
+def test_surface_command_height_map(tmp_path, capsys):
+    h = _bem_map()
+    np.save(tmp_path / "h.npy", h)
+    rc = main(
+        [
+            "surface",
+            str(tmp_path / "h.npy"),
+            "--size",
+            "1",
+            "--periodic",
+            "--n-loads",
+            "8",
+            "--output",
+            str(tmp_path / "o"),
+        ]
+    )
+    out = capsys.readouterr().out
+    assert rc == 0
+    assert "convention 'persson'" in out and "rms slope" in out
+    header, cols, data = _read_csv(tmp_path / "o" / "surface.csv")
+    assert any("units:" in ln for ln in header) and any("source: height map" in ln for ln in header)
+    # the CSV's numbers are the library's on the imported spectrum (12 printed digits)
+    psd = pf.psd_from_heightmap(h, 1.0).psd
+    p = data[:, cols.index("p_bar")]
+    ms = pf.MeanSeparation(psd, 1.0, "YP08")
+    np.testing.assert_allclose(data[:, cols.index("u_YP08")], ms.mean_separation(p), rtol=1e-10)
+    np.testing.assert_allclose(data[:, cols.index("K_none")], pf.MeanSeparation(psd).stiffness(p), rtol=1e-10)
+    A = pf.exact(pf.ContactProblem(psd, 1.0, p, "WM17")).contact_area
+    np.testing.assert_allclose(data[:, cols.index("A_WM17")], A, rtol=1e-10)
+    assert (tmp_path / "o" / "surface.png").stat().st_size > 1000
+
+
+def test_surface_command_contact_engineering_csv(tmp_path, capsys):
+    psd = pf.SelfAffinePSD.from_rms_slope(0.2, 0.7, 1e5, 4e5, 1e8)  # SI: q in rad/m
+    q = np.geomspace(psd.q_l, psd.q_s, 80)
+    Y = q * (2 * np.pi) ** 2 * psd.C(q) / np.pi
+    path = tmp_path / "psd.csv"
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write("Subject type;Subject name;Function name;Data series;Wavevector (m⁻¹);PSD (m³)\n")
+        for a, b in zip(q, Y):
+            fh.write(f"measurement;x;Power spectrum;q/π × 2D PSD;{float(a)!r};{float(b)!r}\n")
+    rc = main(["surface", str(path), "--E-star", "1e9", "--n-loads", "5", "--output", str(tmp_path / "o")])
+    out = capsys.readouterr().out
+    assert rc == 0
+    line = next(ln for ln in out.splitlines() if ln.startswith("rms height"))
+    # 6 printed digits; the roll-off kink falls between table points (measured -1.5e-5)
+    assert float(line.split("rms slope ")[1].split()[0]) == pytest.approx(0.2, rel=1e-4)
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["surface", "missing.npy", "--size", "1"], "no such file"),
+        (["surface", "{h}"], "--size"),
+        (["surface", "{h}", "--size", "1", "--ratio-min", "2", "--ratio-max", "1"], "ratio"),
+        (["surface", "{h}", "--size", "-1"], "size"),
+        (["surface", "{h}", "--size", "1", "--n-loads", "1"], "n-loads"),
+    ],
+)
+def test_surface_command_bad_arguments_one_line_exit_2(tmp_path, capsys, argv, message):
+    np.save(tmp_path / "h.npy", _bem_map(32))
+    argv = [a.replace("{h}", str(tmp_path / "h.npy")) for a in argv] + ["--output", str(tmp_path / "o")]
+    rc = main(argv)
+    err = capsys.readouterr().err.strip()
+    assert rc == 2
+    assert len(err.splitlines()) == 1 and message in err and "Traceback" not in err
