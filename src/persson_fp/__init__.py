@@ -18,9 +18,13 @@ from .exact import (
     variance_closed_form,
 )
 from .problem import ContactProblem
+from .quantities import QUANTITIES, register_quantity
 from .solution import Comparison, InstabilityError, Solution, SolverError
 from .solvers import METHODS, available_methods, solve
 from .spectrum import PSD, SelfAffinePSD, TabulatedPSD
+from .sweep import SweepError, sweep
+from .sweep_table import SweepResult
+from .sweep_table import read_table as read_sweep_table
 
 __version__ = "0.1.0"
 
@@ -47,4 +51,11 @@ __all__ = [
     "solve",
     "available_methods",
     "__version__",
+    # sweeps
+    "sweep",
+    "SweepResult",
+    "SweepError",
+    "QUANTITIES",
+    "register_quantity",
+    "read_sweep_table",
 ]
