@@ -35,6 +35,7 @@ commands:
            solvers checked against the exact solution (--all-methods adds py-pde and FiPy), PNG figures
   solve    solve one problem (your surface and loads) with a chosen method; CSV/JSON/PNG output
   area     the contact-area curve A*(p_bar) for a range of loads, every fudge model (CSV + PNG)
+  sweep    a folder of surfaces (CSV spectra) x fudge models x loads into one table (CSV or Parquet)
 
 examples:
   persson-fp
@@ -288,7 +289,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="persson-fp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("--version", action="version", version=f"persson-fp {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="{report,solve,area}")
+    sub = parser.add_subparsers(dest="command", metavar="{report,solve,area,sweep}")
 
     rep = sub.add_parser("report", help="exact table + solver check + figures (the default)")
     _add_problem_args(rep)
@@ -318,6 +319,10 @@ def build_parser() -> argparse.ArgumentParser:
     ar.add_argument("--ratio-max", type=float, default=3.0, help="largest p_bar/sqrt(V) (default 3)")
     ar.add_argument("--output", default="persson-fp-output", help="folder for CSV/PNG")
     ar.set_defaults(func=cmd_area)
+
+    from . import cli_sweep
+
+    cli_sweep.add_parser(sub)
     return parser
 
 
