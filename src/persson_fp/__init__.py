@@ -22,9 +22,9 @@ from .quantities import QUANTITIES, register_quantity
 from .solution import Comparison, InstabilityError, Solution, SolverError
 from .solvers import METHODS, available_methods, solve
 from .spectrum import PSD, SelfAffinePSD, TabulatedPSD
-from .sweep import SweepError, sweep
 from .sweep_table import SweepResult
 from .sweep_table import read_table as read_sweep_table
+from .sweeps import SweepError, sweep
 
 __version__ = "0.1.0"
 

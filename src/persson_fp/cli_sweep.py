@@ -63,7 +63,7 @@ def add_parser(sub) -> argparse.ArgumentParser:
 
 def cmd_sweep(args) -> int:
     from .spectrum import TabulatedPSD
-    from .sweep import SweepWarning, sweep
+    from .sweeps import SweepWarning, sweep
 
     if args.workers < 1:
         raise ValueError(f"--workers must be >= 1, got {args.workers}")
