@@ -117,3 +117,14 @@ def test_contact_area_curve_quick(tmp_path):
         # the sine series (modes for 1e-13) reaches the issue's 1e-6 on every load, and one method is marked
         assert next(r for r in pde if r["method"] == "sines")["max_abs_area_error"] < 1e-6
         assert sum(bool(r["fastest_reaching_1e-06"]) for r in pde) == 1
+
+
+def test_sweep_quick(tmp_path):
+    """Every configuration of the sweep benchmark reproduces the serial table bit for bit."""
+    rows = _module("sweep").main(["--quick", "--output", str(tmp_path)])
+    assert len(_rows(tmp_path / "sweep.csv")) == len(rows) == 2 * 4  # (the spawn pool only in the full run)
+    assert "per core vs exact" in (tmp_path / "sweep.md").read_text()
+    for r in rows:
+        assert r["identical"] and r["loads_per_s"] > 0 and r["repeats"] == 2
+    ref = [r for r in rows if r["config"].startswith("pf.exact loop")]
+    assert [r["per_core_vs_exact"] for r in ref] == [1.0, 1.0]

@@ -378,10 +378,10 @@ def sweep(
 
     sqrtV = np.array([float(np.sqrt(psd.V(E_star=E_star))) for _, psd, _ in surf])
     p_bar = np.outer(sqrtV, loads) if relative_loads else np.tile(loads, (len(surf), 1))
-    tasks = [
+    tasks = [  # models inner: a chunk mixes cheap and costly models (the Xu24 / ODE ones cost more)
         _Task(i, j, psd, kwargs, E_star, p_bar[i], qs, method, options)
-        for j, (_, kwargs, _) in enumerate(mods)
         for i, (_, psd, _) in enumerate(surf)
+        for j, (_, kwargs, _) in enumerate(mods)
     ]
 
     own = None
