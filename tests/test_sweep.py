@@ -321,13 +321,18 @@ def test_to_xarray_labels_and_units():
     assert ds.attrs["method"] == "exact"
 
 
-def test_without_pandas_the_table_is_a_dict_of_arrays(monkeypatch):
+def test_without_pandas_the_table_is_a_dict_of_arrays(monkeypatch, tmp_path):
     monkeypatch.setitem(sys.modules, "pandas", None)  # import pandas -> ImportError
     res = pf.sweep(_surfaces(), LOADS, progress=False)
     t = res.table
     assert isinstance(t, dict) and all(isinstance(v, np.ndarray) and v.size == 3 * LOADS.size for v in t.values())
     with pytest.raises(ImportError, match="pip install pandas"):
         res.to_pandas()
+    res.to_csv(tmp_path / "t.csv")  # the CSV writer needs no pandas
+    lines = (tmp_path / "t.csv").read_text().splitlines()
+    assert lines[0].startswith("# persson-fp sweep table") and len(lines) == 3 + 3 * LOADS.size
+    last = dict(zip(lines[2].split(","), lines[-1].split(",")))
+    assert float(last["value"]) == res["contact_area"][2, 0, -1]  # repr() of a float reads back exactly
 
 
 class _FakeTTY:
