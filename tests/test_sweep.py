@@ -222,6 +222,11 @@ def test_a_numerical_method_through_the_sweep():
     assert res.metadata["method"] == "sines"
 
 
+def test_a_misspelt_solver_option_is_refused_before_any_task_runs():
+    with pytest.raises(TypeError, match="unknown option\\(s\\) \\['n_pp'\\]"):
+        pf.sweep(_surfaces(), LOADS, method="fv", n_pp=100, progress=False)
+
+
 def test_models_as_keyword_dicts_and_labels():
     res = pf.sweep(
         _surfaces(), LOADS, models={"plain": None, "yp": {"fudge": pf.fudge.YangPersson(gamma=0.45)}}, progress=False

@@ -189,7 +189,8 @@ class SweepResult:
 
     @property
     def table(self):
-        """The tidy table: a pandas DataFrame when pandas is installed, else a dict of column arrays."""
+        """The tidy table: a pandas DataFrame when pandas is installed, else a dict of column arrays (built anew
+        on each access; keep it in a variable)."""
         try:
             import pandas  # noqa: F401
         except ImportError:

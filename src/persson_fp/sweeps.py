@@ -353,6 +353,10 @@ def sweep(
     ------
     ValueError
         Bad surfaces, loads, models, quantities, method, ``chunksize`` or ``errors``.
+    TypeError
+        An option the solver of ``method`` does not take.
+    ImportError
+        ``method`` needs an optional package that is missing (names the pip extra).
     SweepError
         With ``errors="raise"``, after every task has run, when any failed.
     """
@@ -367,10 +371,14 @@ def sweep(
     if not isinstance(method, str):
         raise ValueError(f"method must be 'exact' or a solver name, got {method!r}")
     if method != "exact":
-        from .solvers import METHODS
+        from .solvers import METHODS, SHARED_KNOBS, get_solver
 
         if method not in METHODS:
             raise ValueError(f"method must be 'exact' or one of {sorted(METHODS)}, got {method!r}")
+        known = set(get_solver(method).OPTIONS) | set(SHARED_KNOBS)  # (ImportError here for a missing extra)
+        bad = sorted(set(options) - known)
+        if bad:  # a misspelt option: once, here, rather than once per task
+            raise TypeError(f"method {method!r} got unknown option(s) {bad}; it takes {sorted(known)}")
     elif options:
         raise ValueError(f"method='exact' takes no solver options, got {sorted(options)}")
     surf = _resolve_surfaces(surfaces, surface_reader or _read_csv_surface)
