@@ -271,8 +271,10 @@ def test_bad_loads(loads):
 def test_bad_surfaces(tmp_path):
     with pytest.raises(ValueError, match="no such file"):
         pf.sweep(str(tmp_path / "missing.csv"), LOADS)
-    with pytest.raises(ValueError, match="holds no .csv"):
+    with pytest.raises(ValueError, match="holds no files matching '\\*.csv'"):
         pf.sweep(tmp_path, LOADS)
+    with pytest.raises(ValueError, match="surface_pattern must be"):
+        pf.sweep(tmp_path, LOADS, surface_pattern="")
     with pytest.raises(ValueError, match="must be a SelfAffinePSD"):
         pf.sweep([1.0], LOADS)
     with pytest.raises(ValueError, match="surfaces must be"):
@@ -288,8 +290,11 @@ def test_surfaces_from_a_folder_of_csv(tmp_path):
         (tmp_path / f"{name}.csv").write_text(
             "q,C\n" + "".join(f"{float(a)!r},{float(c)!r}\n" for a, c in zip(q, psd.C(q)))
         )
+    (tmp_path / "README.txt").write_text("not a spectrum")  # not matched by the default "*.csv"
     res = pf.sweep(tmp_path, LOADS, relative_loads=True, progress=False)
     assert res.surfaces == sorted(surfaces)
+    own = pf.sweep(tmp_path, LOADS, relative_loads=True, progress=False, surface_pattern="H*.csv")
+    assert own.surfaces == ["H0.3", "H0.8"]
     assert res.surface_info[0]["source"].endswith("H0.3.csv") and res.surface_info[0]["surface_kind"] == "TabulatedPSD"
     np.testing.assert_allclose(res["contact_area"][:, 0], np.tile(erf(LOADS / np.sqrt(2)), (3, 1)), rtol=1e-14)
 

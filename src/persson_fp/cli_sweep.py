@@ -39,6 +39,7 @@ def add_parser(sub) -> argparse.ArgumentParser:
         "sweep", help=HELP, description=HELP, epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     sw.add_argument("surfaces", nargs="+", help="CSV files (columns q,C) or folders of them")
+    sw.add_argument("--pattern", default="*.csv", help="which files of a folder to read (glob, default *.csv)")
     sw.add_argument("--q-column", default="q", help="wavenumber column name (default q)")
     sw.add_argument("--C-column", dest="C_column", default="C", help="PSD column name (default C)")
     sw.add_argument("--p-bar", type=float, nargs="+", default=None, help="absolute nominal pressures (pressure)")
@@ -92,6 +93,7 @@ def cmd_sweep(args) -> int:
             executor=args.workers,
             progress=not args.no_progress,
             surface_reader=reader,
+            surface_pattern=args.pattern,
         )
     d = os.path.dirname(os.path.abspath(out))
     os.makedirs(d, exist_ok=True)

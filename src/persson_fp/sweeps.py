@@ -11,6 +11,7 @@ The result is a :class:`~persson_fp.sweep_table.SweepResult` (tidy table, labell
 
 from __future__ import annotations
 
+import fnmatch
 import inspect
 import os
 import sys
@@ -69,8 +70,8 @@ def _read_csv_surface(path) -> PSD:
     return TabulatedPSD.from_csv(path)
 
 
-def _expand(surfaces):
-    """(label, source, object) for every surface; a folder expands to its sorted ``*.csv`` files."""
+def _expand(surfaces, pattern="*.csv"):
+    """(label, path or object) for every surface; a folder expands to its sorted files matching ``pattern``."""
     if isinstance(surfaces, (PSD, str, os.PathLike)):
         surfaces = [surfaces]
     if isinstance(surfaces, dict):
@@ -85,9 +86,11 @@ def _expand(surfaces):
     out = []
     for i, (label, s) in enumerate(items):
         if isinstance(s, (str, os.PathLike)) and os.path.isdir(s):
-            files = sorted(f for f in os.listdir(s) if f.lower().endswith(".csv"))
+            files = sorted(
+                f for f in os.listdir(s) if os.path.isfile(os.path.join(s, f)) and fnmatch.fnmatch(f, pattern)
+            )
             if not files:
-                raise ValueError(f"surfaces: folder {os.fspath(s)!r} holds no .csv files")
+                raise ValueError(f"surfaces: folder {os.fspath(s)!r} holds no files matching {pattern!r}")
             for f in files:
                 path = os.path.join(s, f)
                 out.append((os.path.splitext(f)[0] if label is None else f"{label}/{os.path.splitext(f)[0]}", path))
@@ -100,9 +103,9 @@ def _expand(surfaces):
     return out
 
 
-def _resolve_surfaces(surfaces, reader):
+def _resolve_surfaces(surfaces, reader, pattern):
     out = []
-    for label, s in _expand(surfaces):
+    for label, s in _expand(surfaces, pattern):
         source = ""
         if isinstance(s, str):
             source, s = s, reader(s)
@@ -297,6 +300,7 @@ def sweep(
     progress: bool = True,
     errors: str = "collect",
     surface_reader=None,
+    surface_pattern: str = "*.csv",
     **options,
 ) -> SweepResult:
     """Evaluate quantities of Persson's theory over surfaces x models x loads.
@@ -341,6 +345,8 @@ def sweep(
         carrying the result.
     surface_reader : callable, optional
         ``reader(path) -> PSD`` for file surfaces; default :meth:`TabulatedPSD.from_csv`.
+    surface_pattern : str
+        Which files of a folder are surfaces (a glob, default ``"*.csv"``).
 
     Returns
     -------
@@ -381,7 +387,9 @@ def sweep(
             raise TypeError(f"method {method!r} got unknown option(s) {bad}; it takes {sorted(known)}")
     elif options:
         raise ValueError(f"method='exact' takes no solver options, got {sorted(options)}")
-    surf = _resolve_surfaces(surfaces, surface_reader or _read_csv_surface)
+    if not isinstance(surface_pattern, str) or not surface_pattern:
+        raise ValueError(f"surface_pattern must be a non-empty glob pattern such as '*.csv', got {surface_pattern!r}")
+    surf = _resolve_surfaces(surfaces, surface_reader or _read_csv_surface, surface_pattern)
     mods = _resolve_models(models)
 
     sqrtV = np.array([float(np.sqrt(psd.V(E_star=E_star))) for _, psd, _ in surf])
