@@ -431,3 +431,10 @@ def test_compact_reprs():
     assert repr(res).startswith("SweepResult(method='exact', 3 surfaces x 3 models x 5 loads; contact_area [1]")
     h = res._repr_html_()
     assert h.count("<tr>") == 1 + 3 and "median" in h
+
+
+def test_docstring_example_runs():
+    import doctest
+
+    failed, attempted = doctest.testmod(psweep, verbose=False)
+    assert attempted >= 3 and failed == 0

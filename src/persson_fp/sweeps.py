@@ -321,7 +321,9 @@ def sweep(
     models : model or list / dict (label -> model) of models, default ``[None]``
         A model is ``None`` (Persson 2001), a fudge-factor name ("YP08", "WM17", "Xu24"), a
         :class:`~persson_fp.fudge.FudgeFactor`, a callable S(A*) (``eq:new_B2``), or a dict of
-        :class:`~persson_fp.ContactProblem` keyword arguments such as ``{"fudge": "YP08"}``.
+        :class:`~persson_fp.ContactProblem` keyword arguments such as ``{"fudge": "YP08"}`` (any
+        keyword but psd, p_bar and E_star; new ones of ContactProblem are accepted as they appear).
+        ``models`` itself as a dict is one model when all its keys are such keywords, else labels.
     quantities : str or sequence of str
         Names from :data:`persson_fp.quantities.QUANTITIES` ("contact_area", "variance",
         "elastic_energy", and more once registered).
@@ -358,13 +360,31 @@ def sweep(
     Raises
     ------
     ValueError
-        Bad surfaces, loads, models, quantities, method, ``chunksize`` or ``errors``.
+        Bad surfaces, loads, models, quantities, method, ``chunksize``, ``errors`` or
+        ``surface_pattern``.
     TypeError
         An option the solver of ``method`` does not take.
     ImportError
         ``method`` needs an optional package that is missing (names the pip extra).
     SweepError
         With ``errors="raise"``, after every task has run, when any failed.
+
+    Notes
+    -----
+    A cluster's workers need persson-fp installed (tasks travel as pickles naming its functions).
+    With ``method="exact"`` A* and Var(p) are the closed forms of Xu, Li, Chen, Zhou, "Persson's
+    Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic Process
+    Theory" (``eq:Area_Persson``, ``eq:variance_p_form1``) at the effective variance of the model.
+
+    Examples
+    --------
+    >>> import numpy as np, persson_fp as pf
+    >>> psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=128.0)
+    >>> res = pf.sweep([psd], np.array([0.5, 1.0]), models=[None, "YP08"], relative_loads=True, progress=False)
+    >>> res.shape
+    (1, 2, 2)
+    >>> round(float(res["contact_area"][0, 0, 1]), 6)  # erf(1 / sqrt 2)
+    0.682689
     """
     t_start = time.perf_counter()
     if errors not in ("collect", "raise"):
