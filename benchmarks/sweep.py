@@ -185,7 +185,8 @@ def main(argv=None):
         "",
         f"Machine: {machine()}; load average {load0:.2f} before, {load1:.2f} after the run"
         f" ({time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}).",
-        f"Median of {repeats} calls each (the spawn pool: no untimed warm-up call). Loads are 1000 ratios"
+        f"Median of {repeats} calls each (rounds interleaved after one warm-up round;"
+        " a spawn pool starts cold on every call). Loads are 1000 ratios"
         " p_bar / sqrt(V) in [1e-3, 3] per surface; models none, YP08, WM17, Xu24."
         if not args.quick
         else f"Quick run, median of {repeats}.",
