@@ -130,3 +130,14 @@ def test_plasticity_quick(tmp_path):
     fv = [r for r in rows if r["scene"] == "moving" and r["method"] == "fv"]
     assert min(r["error_A_pl"] for r in fv) < 1e-6
     assert "cn-uniform (peer)" in {r["method"] for r in rows}
+
+
+def test_sweep_quick(tmp_path):
+    """Every configuration of the sweep benchmark reproduces the serial table bit for bit."""
+    rows = _module("sweep").main(["--quick", "--output", str(tmp_path)])
+    assert len(_rows(tmp_path / "sweep.csv")) == len(rows) == 2 * 4  # (the spawn pool only in the full run)
+    assert "per core vs exact" in (tmp_path / "sweep.md").read_text()
+    for r in rows:
+        assert r["identical"] and r["loads_per_s"] > 0 and r["repeats"] == 2
+    ref = [r for r in rows if r["config"].startswith("pf.exact loop")]
+    assert [r["per_core_vs_exact"] for r in ref] == [1.0, 1.0]

@@ -20,6 +20,7 @@ from .exact import (
 )
 from .fokker_planck import FokkerPlanckProblem
 from .problem import ContactProblem
+from .quantities import QUANTITIES, register_quantity
 from .separation import WEIGHTINGS, MeanSeparation, contact_stiffness, mean_separation, separation_from_areas
 from .solution import Comparison, InstabilityError, Solution, SolverError
 from .solvers import METHODS, available_methods, solve
@@ -32,6 +33,9 @@ from .surface import (
     read_contact_engineering_csv,
     read_heightmap,
 )
+from .sweep_table import SweepResult
+from .sweep_table import read_table as read_sweep_table
+from .sweeps import SweepError, sweep
 
 __version__ = "0.1.0"
 
@@ -75,4 +79,11 @@ __all__ = [
     "read_heightmap",
     "read_contact_engineering_csv",
     "from_surface_topography",
+    # sweeps
+    "sweep",
+    "SweepResult",
+    "SweepError",
+    "QUANTITIES",
+    "register_quantity",
+    "read_sweep_table",
 ]

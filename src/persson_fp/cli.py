@@ -37,6 +37,7 @@ commands:
   area     the contact-area curve A*(p_bar) for a range of loads, every fudge model (CSV + PNG)
   surface  a measured surface (height map or contact.engineering CSV) -> spectrum, A*, mean separation,
            stiffness for a range of loads, every fudge model (CSV + PNG)
+  sweep    a folder of surfaces (CSV spectra) x fudge models x loads into one table (CSV or Parquet)
 
 examples:
   persson-fp
@@ -295,7 +296,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="persson-fp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("--version", action="version", version=f"persson-fp {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="{report,solve,area,surface}")
+    sub = parser.add_subparsers(dest="command", metavar="{report,solve,area,surface,sweep}")
 
     rep = sub.add_parser("report", help="exact table + solver check + figures (the default)")
     _add_problem_args(rep)
@@ -329,6 +330,9 @@ def build_parser() -> argparse.ArgumentParser:
     from . import cli_surface
 
     cli_surface.add_parser(sub)
+    from . import cli_sweep
+
+    cli_sweep.add_parser(sub)
     return parser
 
 

@@ -287,6 +287,27 @@ class ExactSolution:
             out = out[0]
         return out
 
+    # -- display (compact: never the arrays) -----------------------------------------------------------------
+    def _summary_rows(self) -> list:
+        from ._display import span
+
+        return [
+            ("fudge", "fudge", repr(self.problem.fudge.name)),
+            ("p_bar", "p_bar (pressure)", span(self.problem.p_bar)),
+            ("zeta", "zeta", span(self._zeta)),
+            ("V", "V (pressure^2)", span(self._V)),
+            ("A", "A*", span(self._A)),
+        ]
+
+    def __repr__(self):
+        return "ExactSolution(" + ", ".join(f"{k}={v}" for k, _, v in self._summary_rows()) + ")"
+
+    def _repr_html_(self):
+        from ._display import html_table
+
+        rows = [(label, v) for _, label, v in self._summary_rows()]
+        return html_table("persson-fp ExactSolution (closed form)", rows)
+
 
 def exact(problem: ContactProblem, zeta=None) -> ExactSolution:
     """The exact solution of ``problem`` at ``zeta`` (scalar or 1-D, default ``zeta_max``).

@@ -259,9 +259,18 @@ class MeanSeparation:
         return self.u0, self.beta
 
 
+def _elastic_only(problem) -> None:
+    if getattr(problem, "hardness", None) is not None or getattr(problem, "general", False):
+        raise ValueError(
+            "the mean separation of this module is the elastic theory's (Persson 2007); a problem with a hardness "
+            "or general coefficients is not covered (use separation_from_areas with a numerical solution's areas)"
+        )
+
+
 def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:
     r""":math:`\bar u` (length) at the loads of a :class:`~persson_fp.ContactProblem` (its spectrum, E* and
     fudge factor), see :class:`MeanSeparation`.  Scalar for a scalar load."""
+    _elastic_only(problem)
     ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
     out = ms.mean_separation(problem.p_bar)
     return float(out[0]) if problem.scalar_load else out
@@ -270,6 +279,7 @@ def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:
 def contact_stiffness(problem, weighting: str = "yang-persson") -> np.ndarray:
     r"""Normal contact stiffness per nominal area :math:`K = -d\bar p/d\bar u` (pressure / length) at the loads
     of a :class:`~persson_fp.ContactProblem`, see :class:`MeanSeparation`."""
+    _elastic_only(problem)
     ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
     out = ms.stiffness(problem.p_bar)
     return float(out[0]) if problem.scalar_load else out

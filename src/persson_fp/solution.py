@@ -450,3 +450,28 @@ class Solution:
         from . import plotting
 
         return plotting.plot_solution(self, ax=ax, **kwargs)
+
+    # -- display (compact: never the arrays) -----------------------------------------------------------------
+    def _summary_rows(self) -> list:
+        from ._display import span
+
+        z = self.zeta
+        return [
+            ("method", "method", repr(self.method)),
+            ("fudge", "fudge", repr(self.problem.fudge.name)),
+            ("p_bar", "p_bar (pressure)", span(self.problem.p_bar)),
+            ("zeta", "zeta (stations)", span(z)),
+            ("n_p", f"grid ({self.kind})", self.p.size),
+            ("steps", "steps", self.info.get("steps")),
+            ("A", f"A* at zeta = {z[-1]:.4g}", span(self.contact_area_all[-1])),
+            ("wall_time", "wall time", f"{self.wall_time * 1e3:.3g} ms"),
+            ("warnings", "warnings", len(self.info.get("warnings", []))),
+        ]
+
+    def __repr__(self):
+        return "Solution(" + ", ".join(f"{k}={v}" for k, _, v in self._summary_rows()) + ")"
+
+    def _repr_html_(self):
+        from ._display import html_table
+
+        return html_table("persson-fp Solution", [(label, v) for _, label, v in self._summary_rows()])
