@@ -65,6 +65,8 @@ class SweepResult:
         Model labels (axis 1).
     loads : ndarray
         The loads as given (axis 2): p_bar (pressure), or p_bar / sqrt(V) with ``relative_loads``.
+    relative_loads : bool
+        Whether ``loads`` are relative, p_bar / sqrt(V(zeta_max)).
     p_bar : ndarray (n_surfaces, n_loads)
         Nominal pressure of every (surface, load) (pressure).
     sqrtV : ndarray (n_surfaces,)
@@ -77,6 +79,10 @@ class SweepResult:
         Seconds per task, measured where it ran.
     metadata : dict
         Method, options, E_star, executor, versions, wall time; written with every table.
+    values : dict
+        Quantity name -> array (n_surfaces, n_models, n_loads) (read through ``result[name]``).
+    ok : ndarray of bool (n_surfaces, n_models)
+        Whether each task succeeded.
     """
 
     def __init__(
@@ -168,6 +174,11 @@ class SweepResult:
         Columns: surface, its description (surface_kind, H, q_l, q_r, q_s, zeta_max, rms_height,
         rms_slope, source), model, fudge (and any other model keyword), method, E_star, load_index,
         p_bar, p_bar_over_sqrtV, quantity, value, unit.  Labels are object arrays of str.
+
+        Returns
+        -------
+        dict of str to ndarray
+            Column name -> column.
         """
         return {
             k: (np.array(v[1], dtype=object)[v[0]] if isinstance(v, tuple) else v) for k, v in self._columns().items()
@@ -177,6 +188,11 @@ class SweepResult:
         """The tidy table as a pandas DataFrame (label columns categorical), metadata in ``df.attrs``.
 
         Needs pandas.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per surface x model x quantity x load.
         """
         pd = _need("pandas", "pandas")
         cols = {
@@ -202,6 +218,11 @@ class SweepResult:
 
         Coordinates: surface labels and descriptions, model labels, the loads as given, p_bar
         (surface, load); failed tasks are NaN.  Needs xarray.
+
+        Returns
+        -------
+        xarray.Dataset
+            One variable per quantity.
         """
         xr = _need("xarray", "xarray")
         coords = {"surface": self.surfaces, "model": self.models, "load": self.loads}
@@ -223,7 +244,17 @@ class SweepResult:
     # -- writers ------------------------------------------------------------------------------------------
     def to_csv(self, path) -> None:
         """Write the tidy table as CSV; the first two lines are ``#`` comments holding the metadata
-        as JSON (:func:`read_table` reads them back into ``df.attrs``).  No pandas needed."""
+        as JSON (:func:`read_table` reads them back into ``df.attrs``).  No pandas needed.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file to write.
+
+        Returns
+        -------
+        None
+        """
         try:
             import pandas  # noqa: F401
         except ImportError:
@@ -241,7 +272,17 @@ class SweepResult:
                 w.writerow([_cell(v) for v in row])
 
     def to_parquet(self, path) -> None:
-        """Write the tidy table as Parquet with the metadata in the file (needs pandas and pyarrow)."""
+        """Write the tidy table as Parquet with the metadata in the file (needs pandas and pyarrow).
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file to write.
+
+        Returns
+        -------
+        None
+        """
         _need("pyarrow", "pyarrow")
         self.to_pandas().to_parquet(path, index=False)
 
@@ -284,7 +325,15 @@ class SweepResult:
 def read_table(path):
     """Read a table written by :meth:`SweepResult.to_csv` or :meth:`SweepResult.to_parquet`.
 
-    Returns a pandas DataFrame with the metadata in ``df.attrs`` (needs pandas).
+    Parameters
+    ----------
+    path : str or path-like
+        A ``.csv`` or ``.parquet`` file.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The table, with the metadata in ``df.attrs`` (needs pandas).
     """
     pd = _need("pandas", "pandas")
     path = str(path)
