@@ -244,7 +244,7 @@ class SweepResult:
     # -- writers ------------------------------------------------------------------------------------------
     def to_csv(self, path) -> None:
         """Write the tidy table as CSV; the first two lines are ``#`` comments holding the metadata
-        as JSON (:func:`read_table` reads them back into ``df.attrs``).  No pandas needed.
+        as JSON (:func:`persson_fp.read_sweep_table` reads them back into ``df.attrs``).  No pandas needed.
 
         Parameters
         ----------

@@ -325,7 +325,7 @@ def sweep(
         keyword but psd, p_bar and E_star; new ones of ContactProblem are accepted as they appear).
         ``models`` itself as a dict is one model when all its keys are such keywords, else labels.
     quantities : str or sequence of str
-        Names from :data:`persson_fp.quantities.QUANTITIES` ("contact_area", "variance",
+        Names from ``persson_fp.QUANTITIES`` ("contact_area", "variance",
         "elastic_energy", and more once registered).
     method : str
         ``"exact"`` (closed form, :func:`persson_fp.exact`) or a :func:`persson_fp.solve` method;
@@ -343,7 +343,7 @@ def sweep(
         A tqdm bar over completed tasks; shown only on a terminal, outside CI, with tqdm installed.
     errors : {"collect", "raise"}
         A failed task is recorded in ``result.failures`` (with its surface and model) and the others
-        finish; "collect" then warns (:class:`SweepWarning`), "raise" raises :class:`SweepError`
+        finish; "collect" then warns (``SweepWarning``), "raise" raises :class:`~persson_fp.SweepError`
         carrying the result.
     surface_reader : callable, optional
         ``reader(path) -> PSD`` for file surfaces; default :meth:`TabulatedPSD.from_csv`.
