@@ -9,8 +9,8 @@ Original theory (``eq:P0_solution``, ``eq:Area_Persson``): with tau = V(zeta),
 
 and an atom :math:`1 - A^*` at p = 0 (``eq:PDF_piecewise_explicit``).
 Fudge-factor theories (``eq:new_B2``): the same formulas evaluated at the
-effective variance :math:`\tau = \int S\,dV` (DESIGN §1,
-:mod:`persson_fp.effective`).  Everything is vectorised over magnifications
+effective variance :math:`\tau = \int S\,dV`
+(:mod:`persson_fp.effective`).  Everything is vectorised over magnifications
 and loads: arrays have shape ``(n_zeta, n_loads)``, and a scalar zeta or a
 scalar load drops its axis.
 
@@ -319,7 +319,7 @@ def exact(problem: ContactProblem, zeta=None) -> ExactSolution:
 
 
 def pressure_spectrum(problem: ContactProblem, q, A_n: float = 1.0) -> np.ndarray:
-    r""":math:`|\tilde p(q)|^2` of ``eq:Pf_prime`` (pressure^2 length^4 / (2 pi)^2 units of the seed's FT).
+    r""":math:`|\tilde p(q)|^2` of ``eq:Pf_prime`` (pressure^2 length^4 / (2 pi)^2 units of the Xu et al. tutorial's Fourier transform).
 
     .. math::  |\tilde p(q)|^2 = \Big(\frac{E^*}{4\pi}\Big)^2 A_n\, q^2 C(q)\, A^*(\bar p, q/q_l)\, S(A^*)
 
@@ -344,7 +344,7 @@ def elastic_energy(problem: ContactProblem, zeta=None, epsrel: float = 1e-10) ->
     .. math::  \frac{U_{el}}{A_n} = \frac{\pi E^*}{2}\int_{q_l}^{\zeta q_l}
                q^2 C(q)\, A^*(\bar p, q/q_l)\, S(A^*)\,dq
 
-    (the seed writes the total energy with the factor :math:`A_n`; multiply by
+    (the Xu et al. tutorial writes the total energy with the factor :math:`A_n`; multiply by
     it for a finite patch).  S = 1 in the original theory; the corrected models
     carry S(A*) as in Yang & Persson (2008).  A* comes from the model in use at
     each q.  Adaptive quadrature in ln q (``scipy.integrate.quad_vec``), split at

@@ -6,7 +6,7 @@ A method subclasses :class:`Solver`, declares its own options with defaults in
 assembly of the :class:`~persson_fp.solution.Solution` (where the invariants
 are checked once).  Cf. scipy's ``OdeSolver.step``/``_step_impl``.
 
-Shared resolution knobs (DESIGN §3): ``n_p``, ``n_steps``, ``rtol``, ``atol``,
+Shared resolution knobs: ``n_p``, ``n_steps``, ``rtol``, ``atol``,
 ``scheme``, ``zeta_out``; a shared knob a method does not use draws a warning,
 a misspelt one a ``TypeError``, an out-of-range value a ``ValueError``.
 """
