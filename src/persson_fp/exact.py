@@ -319,7 +319,8 @@ def exact(problem: ContactProblem, zeta=None) -> ExactSolution:
 
 
 def pressure_spectrum(problem: ContactProblem, q, A_n: float = 1.0) -> np.ndarray:
-    r""":math:`|\tilde p(q)|^2` of ``eq:Pf_prime`` (pressure^2 length^4 / (2 pi)^2 units of the Xu et al. tutorial's Fourier transform).
+    r""":math:`|\tilde p(q)|^2` of ``eq:Pf_prime`` (pressure^2 length^4 / (2 pi)^2, in the units of the Xu et al.
+    tutorial's Fourier transform).
 
     .. math::  |\tilde p(q)|^2 = \Big(\frac{E^*}{4\pi}\Big)^2 A_n\, q^2 C(q)\, A^*(\bar p, q/q_l)\, S(A^*)
 

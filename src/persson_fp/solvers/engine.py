@@ -71,15 +71,20 @@ class YieldWall:
 
 @dataclass
 class Coefficients:
-    """Face data at one time: diffusivity D and drift v at the n + 1 faces, and the yield wall's beta.
+    r"""Face data at one time: diffusivity D and drift v at the n + 1 faces, and the yield wall's beta.
 
     ``D`` and ``v`` have shape (n + 1,) or (m, n + 1) (m problems, e.g. loads, advanced together);
-    ``beta`` a scalar or shape (m,).
+    ``beta`` a scalar or shape (m,).  With ``D_cells`` (shape (n,) or (m, n)) the diffusive flux is taken in
+    the form :math:`-\partial_x(D w)` (the Fokker--Planck/Ito form of the tutorial's Eq.
+    'E:Fokker_Planck_Forward'): :math:`-(D_{i+1}w_{i+1} - D_i w_i)/h` at interior faces, and at the walls the
+    odd extension of :math:`u = Dw` (which, unlike w, stays regular where D vanishes at the wall: a degenerate
+    diffusion still absorbs).  Second order as long as u is odd-smooth at p = 0, i.e. B1(0) = 0 or P'(0) = 0.
     """
 
     D: np.ndarray
     v: np.ndarray
     beta: np.ndarray
+    D_cells: np.ndarray | None = None
 
 
 def assemble(c: Coefficients, h: float) -> np.ndarray:
@@ -91,9 +96,16 @@ def assemble(c: Coefficients, h: float) -> np.ndarray:
     beta = np.broadcast_to(np.asarray(c.beta, dtype=float), (m,))
     ab = np.zeros((m, 4, n + 1))
     # interior face i+1/2 (i = 0..n-2): G = a_i w_i + b_i w_{i+1}
-    Di, vi = D[:, 1:-1], v[:, 1:-1]
-    a = Di / h - 0.5 * vi
-    b = -Di / h - 0.5 * vi
+    vi = v[:, 1:-1]
+    if c.D_cells is None:
+        DL = DR = D[:, 1:-1]
+        D0, Dn1, Dn2 = D[:, 0], D[:, -1], D[:, -1]
+    else:
+        Dc = np.broadcast_to(np.atleast_2d(c.D_cells), (m, n))
+        DL, DR = Dc[:, :-1], Dc[:, 1:]
+        D0, Dn1, Dn2 = Dc[:, 0], Dc[:, -1], Dc[:, -2]
+    a = DL / h - 0.5 * vi
+    b = -DR / h - 0.5 * vi
     # cell i gets -(G_{i+1/2} - G_{i-1/2})/h.  Band layout: ab[u + i - j, j] = L[i, j] (u = 1).
     diag = np.zeros((m, n + 1))
     sup = np.zeros((m, n + 1))  # L[i, i+1] stored at ab[0, i+1]
@@ -105,10 +117,12 @@ def assemble(c: Coefficients, h: float) -> np.ndarray:
     sub[:, : n - 1] += a / h  # L[i+1, i]
     diag[:, 1:n] += b / h
     # x = 0: absorbing wall, G_{-1/2} = g0 w_0 leaves cell 0 through its lower face
-    g0 = AbsorbingWall.flux_coefficient(D[:, 0], h)
+    g0 = AbsorbingWall.flux_coefficient(D0, h)
     diag[:, 0] += g0 / h
     # x = 1: yield wall, G_{n-1/2} = c2 w_{n-2} + c1 w_{n-1} + ca a: out of cell n-1, into the wall mass
     c2, c1, ca = YieldWall.flux_coefficients(D[:, -1], v[:, -1], beta, h)
+    if c.D_cells is not None:  # -d(Dw)/dx at the wall from (D w) at the wall and in the last two cells
+        c2, c1 = -Dn2 / (3.0 * h), 3.0 * Dn1 / h
     sub[:, n - 2] -= c2 / h  # L[n-1, n-2]
     diag[:, n - 1] -= c1 / h
     sup[:, n] -= ca / h  # L[n-1, n]
@@ -133,8 +147,8 @@ def apply(ab: np.ndarray, y: np.ndarray) -> np.ndarray:
 
 def outflux_low(c: Coefficients, y: np.ndarray, h: float) -> np.ndarray:
     """Rate of mass leaving through x = 0, -G_{-1/2} = 2 D w_0 / h (m,)."""
-    D = np.atleast_2d(c.D)
-    return -AbsorbingWall.flux_coefficient(D[:, 0], h) * y[:, 0]
+    D0 = np.atleast_2d(c.D)[:, 0] if c.D_cells is None else np.atleast_2d(c.D_cells)[:, 0]
+    return -AbsorbingWall.flux_coefficient(D0, h) * y[:, 0]
 
 
 def _solve(ab: np.ndarray, c: float, rhs: np.ndarray) -> np.ndarray:

@@ -117,8 +117,9 @@ class MovingWall:
 
     def _general_coefficients(self, V):
         r"""Front-fixed form of :math:`\partial_V P = -\partial_p(b_1P) + \tfrac12\partial_p^2(b_2P)`, b = B / V'(zeta):
-        :math:`D = b_2/(2s^2)` at the faces, :math:`v = (s_V/s)x - b_1/s + \partial_x b_2/(2s^2)` (the derivative by
-        differences of cell-centre values: second order), :math:`\beta = 2 s s_V / b_2(s)`.  Cached per V."""
+        the diffusive flux :math:`-\partial_x(D w)` with :math:`D = b_2/(2s^2)` at the cells (``D_cells``, the
+        Fokker--Planck form), the drift :math:`v = (s_V/s)x - b_1/s` at the faces, :math:`\beta = 2 s s_V / b_2(s)`.
+        Cached per V."""
         hit = self._coef_cache.get(V)
         if hit is not None:
             return hit
@@ -129,12 +130,7 @@ class MovingWall:
         B1f, B2f = pr.coefficients(s * self.x_faces, z)
         _, B2c = pr.coefficients(s * self.x, z)
         b1f, b2f, b2c = B1f / dVdz, B2f / dVdz, B2c / dVdz
-        h = self.h
-        dx_b2 = np.empty(self.n + 1)
-        dx_b2[1:-1] = (b2c[1:] - b2c[:-1]) / h
-        dx_b2[0] = (b2c[0] - b2f[0]) / (0.5 * h)  # (multiplies w = 0 at the absorbing wall)
-        dx_b2[-1] = (b2f[-1] - b2c[-1]) / (0.5 * h)
-        v = (sV / s) * self.x_faces - b1f / s + dx_b2 / (2.0 * s * s)
+        v = (sV / s) * self.x_faces - b1f / s
         if sV > 0 and not b2f[-1] > 0:
             raise ValueError(f"B2 must be > 0 at a moving yield wall (p = {s:.6g}, zeta = {z:.6g}), got {B2f[-1]!r}")
         beta = 2.0 * s * sV / b2f[-1] if sV > 0 else 0.0
@@ -143,6 +139,7 @@ class MovingWall:
             D=np.broadcast_to(b2f / (2.0 * s * s), (m, self.n + 1)),
             v=np.broadcast_to(v, (m, self.n + 1)),
             beta=np.full(m, beta),
+            D_cells=np.broadcast_to(b2c / (2.0 * s * s), (m, self.n)),
         )
         self._coef_cache[V] = c
         return c
@@ -340,7 +337,8 @@ def solve_lines(
             ).tolil()
             J = sp.lil_matrix((k, k))
             J[: n + 1, : n + 1] = Lj
-            J[n + 1, 0] = -engine.AbsorbingWall.flux_coefficient(float(np.atleast_2d(c.D)[j, 0]), h)
+            D_wall = np.atleast_2d(c.D if c.D_cells is None else c.D_cells)[j, 0]
+            J[n + 1, 0] = -engine.AbsorbingWall.flux_coefficient(float(D_wall), h)
             blocks.append(J.tocsr())
         return sp.block_diag(blocks, format="csr")
 
