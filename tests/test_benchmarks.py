@@ -141,3 +141,13 @@ def test_sweep_quick(tmp_path):
         assert r["identical"] and r["loads_per_s"] > 0 and r["repeats"] == 2
     ref = [r for r in rows if r["config"].startswith("pf.exact loop")]
     assert [r["per_core_vs_exact"] for r in ref] == [1.0, 1.0]
+
+
+def test_auto_quick(tmp_path):
+    """The auto benchmark's quick mode: auto meets tol wherever a hand-picked run does, with the expected method."""
+    rows = _module("auto").main(["--quick", "--output", str(tmp_path)])
+    assert len(_rows(tmp_path / "auto.csv")) == len(rows) >= 8
+    for r in rows:
+        assert r["auto_status"] == "ok"
+        assert r["auto_L1"] <= r["tol"] and r["auto_area"] <= r["tol"]
+        assert r["auto_method"] == ("fv" if r["scene"] == "moving hardness" else "sines")

@@ -342,7 +342,7 @@ class Solution:
     def exact_on_grid(self, ex=None) -> np.ndarray:
         """The exact P0 on this solution's grid in the same sense (cell averages or point values)."""
         if ex is None:
-            ex = exact(self.problem.with_loads(self.problem.p_bar), self.zeta)
+            ex = exact(self.problem, self.zeta)
         if self.kind == "cell":
             edges = self.info.get("edges")
             if edges is None:
@@ -366,7 +366,7 @@ class Solution:
                 "solution to compare with; the solver's own "
                 "error estimate is in info['error_estimate'] (and the conservation residuals in info['checks'])"
             )
-        ex = exact(self.problem.with_loads(self.problem.p_bar), self.zeta)
+        ex = exact(self.problem, self.zeta)
         shape = (self.zeta.size, self.problem.n_loads)
         A_ex = np.asarray(ex.contact_area).reshape(shape)
         diff = self.P0_all - self.exact_on_grid(ex)

@@ -48,8 +48,8 @@ from scipy.special import erf, erfc
 
 __all__ = ["strip_pdf", "strip_cdf", "strip_quantities", "StripEffectiveVariance"]
 
-_K_IMAGES = 8
-"""Image pairs k = -K..K; the first one dropped is below exp(-(2K-1)^2/2) = e^-112 for tau <= sigma^2."""
+_K_IMAGES = 5
+"""Image pairs k = -K..K; the first one dropped is below exp(-(2K-1)^2/2) = e^-40.5 (2.6e-18) for tau <= sigma^2."""
 _N_SINES = 12
 """Sine modes; the first one dropped is below exp(-13^2 pi^2/2) for tau > sigma^2."""
 _SQRT2PI = np.sqrt(2.0 * np.pi)
