@@ -8,20 +8,20 @@ isotropic spectrum with
 q in radians per length (q = 2 pi / wavelength).  Other tools write the same surface with other
 factors (Jacobs, Junge & Pastewka, Surf. Topogr.: Metrol. Prop. 5 (2017) 013001):
 
-=================  ===============================================  ====================================
-``convention``     what the numbers are                              conversion to Persson's C
-=================  ===============================================  ====================================
-``"persson"``      Persson's C (the default)                         C
-``"iso2d"``        2-D FFT / SurfaceTopography                       C = C_iso / (2 pi)^2
-                   ``power_spectrum_from_area``:
-                   :math:`\langle h^2\rangle = \frac{1}{2\pi}\int q C_{iso} dq`
-``"1d"``           1-D PSD of line scans (SurfaceTopography          Abel inversion, see below
-                   ``power_spectrum_from_profile``,
-                   contact.engineering "1D PSD along x/y"):
-                   :math:`\langle h^2\rangle = \frac1\pi\int_0^\infty C^{1D} dq`
-``"q/pi*2d"``      contact.engineering's "q/π × 2D PSD" series       C = Y / (4 pi q)
-                   :math:`Y = q\,C_{iso}/\pi`
-=================  ===============================================  ====================================
+===============  ==============================================================  ==========================
+``convention``   what the numbers are                                            conversion to Persson's C
+===============  ==============================================================  ==========================
+``"persson"``    Persson's C (the default)                                       C
+``"iso2d"``      2-D FFT / SurfaceTopography                                     C = C_iso / (2 pi)^2
+                 ``power_spectrum_from_area``:
+                 :math:`\langle h^2\rangle = \frac{1}{2\pi}\int q C_{iso} dq`
+``"1d"``         1-D PSD of line scans (SurfaceTopography                        Abel inversion, see below
+                 ``power_spectrum_from_profile``,
+                 contact.engineering "1D PSD along x/y"):
+                 :math:`\langle h^2\rangle = \frac1\pi\int_0^\infty C^{1D} dq`
+``"q/pi*2d"``    contact.engineering's "q/π × 2D PSD" series                     C = Y / (4 pi q)
+                 :math:`Y = q\,C_{iso}/\pi`
+===============  ==============================================================  ==========================
 
 A 1-D PSD of an isotropic surface is the Abel transform of the 2-D one,
 :math:`C^{1D}(q) = 2\pi\int_{-\infty}^{\infty} C(\sqrt{q^2+q_y^2})\,dq_y`, inverted by

@@ -1,6 +1,6 @@
 r"""Measured surfaces in: height maps, line scans, contact.engineering exports, SurfaceTopography objects.
 
-Every importer returns a :class:`MeasuredSurface`: Persson's isotropic spectrum as a
+Every importer returns a :class:`~persson_fp.MeasuredSurface`: Persson's isotropic spectrum as a
 :class:`~persson_fp.TabulatedPSD` (convention ``"persson"``, :math:`\langle h^2\rangle =
 2\pi\int qC\,dq`, Xu et al. tutorial ``eq:variance_h_continuous``), the rms height and slope of the height data
 themselves, and notes on what was dropped.  The import compares the spectrum's rms height and slope with the
@@ -20,8 +20,8 @@ incomplete; the notes give the share of :math:`\langle h^2\rangle` and :math:`\l
 of them carried.  Non-periodic data are detrended (plane) and windowed (Hann by default, normalised to keep the
 power).
 
-This module imports no solver and never imports SurfaceTopography (:func:`from_surface_topography` only reads
-the object it is given).
+This module imports no solver and never imports SurfaceTopography
+(:func:`~persson_fp.from_surface_topography` only reads the object it is given).
 """
 
 from __future__ import annotations
