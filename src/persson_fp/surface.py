@@ -72,7 +72,7 @@ class MeasuredSurface:
 
     @property
     def rms_errors(self) -> tuple[float, float] | None:
-        """(rms height, rms slope) of the spectrum relative to the height data, minus 1."""
+        """(rms height, rms slope) of the spectrum relative to the height data, minus 1; None without heights."""
         if self.rms_height_data is None:
             return None
         return self.psd.rms_height / self.rms_height_data - 1.0, self.psd.rms_slope / self.rms_slope_data - 1.0
