@@ -3,7 +3,7 @@
 Reads a height map (``.npy``, or a text table of heights) or a contact.engineering power-spectrum CSV,
 prints the spectrum's convention, rms height and slope (checked against the height data), and writes for a
 range of loads, for every fudge model: the contact area A* (Xu et al. tutorial, ``eq:Area_Persson``), the
-mean separation u and the normal stiffness K = -dp/du (Persson, PRL 99 (2007) 125502; Yang & Persson,
+mean separation u and the normal stiffness K = -dp/du (Persson, Phys. Rev. Lett. 99 (2007) 125502; Yang & Persson,
 J. Phys.: Condens. Matter 20 (2008) 215214) as a CSV with units and a PNG.
 """
 

@@ -8,20 +8,20 @@ isotropic spectrum with
 q in radians per length (q = 2 pi / wavelength).  Other tools write the same surface with other
 factors (Jacobs, Junge & Pastewka, Surf. Topogr.: Metrol. Prop. 5 (2017) 013001):
 
-=================  ===============================================  ====================================
-``convention``     what the numbers are                              conversion to Persson's C
-=================  ===============================================  ====================================
-``"persson"``      Persson's C (the default)                         C
-``"iso2d"``        2-D FFT / SurfaceTopography                       C = C_iso / (2 pi)^2
-                   ``power_spectrum_from_area``:
-                   :math:`\langle h^2\rangle = \frac{1}{2\pi}\int q C_{iso} dq`
-``"1d"``           1-D PSD of line scans (SurfaceTopography          Abel inversion, see below
-                   ``power_spectrum_from_profile``, contact.
-                   engineering "1D PSD along x/y"):
-                   :math:`\langle h^2\rangle = \frac1\pi\int_0^\infty C^{1D} dq`
-``"q/pi*2d"``      contact.engineering's "q/π × 2D PSD" series       C = Y / (4 pi q)
-                   :math:`Y = q\,C_{iso}/\pi`
-=================  ===============================================  ====================================
+===============  ==============================================================  ==========================
+``convention``   what the numbers are                                            conversion to Persson's C
+===============  ==============================================================  ==========================
+``"persson"``    Persson's C (the default)                                       C
+``"iso2d"``      2-D FFT / SurfaceTopography                                     C = C_iso / (2 pi)^2
+                 ``power_spectrum_from_area``:
+                 :math:`\langle h^2\rangle = \frac{1}{2\pi}\int q C_{iso} dq`
+``"1d"``         1-D PSD of line scans (SurfaceTopography                        Abel inversion, see below
+                 ``power_spectrum_from_profile``,
+                 contact.engineering "1D PSD along x/y"):
+                 :math:`\langle h^2\rangle = \frac1\pi\int_0^\infty C^{1D} dq`
+``"q/pi*2d"``    contact.engineering's "q/π × 2D PSD" series                     C = Y / (4 pi q)
+                 :math:`Y = q\,C_{iso}/\pi`
+===============  ==============================================================  ==========================
 
 A 1-D PSD of an isotropic surface is the Abel transform of the 2-D one,
 :math:`C^{1D}(q) = 2\pi\int_{-\infty}^{\infty} C(\sqrt{q^2+q_y^2})\,dq_y`, inverted by
@@ -65,7 +65,25 @@ _DENSITY_DIM = {"persson": 2, "iso2d": 2, "1d": 1, "q/pi*2d": 1}
 
 
 def check_convention(convention: str, q_unit: str = "rad/length") -> tuple[str, str]:
-    """Validate a convention name and a wavenumber unit; return them normalised."""
+    """Validate a convention name and a wavenumber unit; return them normalised.
+
+    Parameters
+    ----------
+    convention : str
+        One of :data:`CONVENTIONS` (case-insensitive).
+    q_unit : str
+        One of :data:`Q_UNITS`: ``"rad/length"`` (q = 2 pi / wavelength) or ``"1/length"`` (1 / wavelength).
+
+    Returns
+    -------
+    convention, q_unit : str
+        The convention in lower case and the unit unchanged.
+
+    Raises
+    ------
+    ValueError
+        An unknown convention or unit (the message lists the accepted ones).
+    """
     if not isinstance(convention, str) or convention.lower() not in CONVENTIONS:
         raise ValueError(f"convention must be one of {sorted(CONVENTIONS)}, got {convention!r}")
     if q_unit not in Q_UNITS:
@@ -76,8 +94,24 @@ def check_convention(convention: str, q_unit: str = "rad/length") -> tuple[str, 
 def abel_factor(H) -> np.ndarray:
     r"""The factor :math:`2\sqrt\pi\,\Gamma(H+1)/\Gamma(H+1/2)` relating a power-law 1-D PSD to C.
 
-    :math:`C(q) = \text{factor}\cdot C^{1D}(q)/(4\pi^2 q)` for :math:`C^{1D}\propto q^{-1-2H}`
-    (dimensionless; pi at H = 1/2, 2 at H = 0, 4 at H = 1).  ``H`` must lie in (-1/2, inf).
+    :math:`C(q) = \text{factor}\cdot C^{1D}(q)/(4\pi^2 q)` for :math:`C^{1D}\propto q^{-1-2H}`, the
+    Abel transform of a power law (module docstring; PSD conventions as in Jacobs, Junge & Pastewka,
+    Surf. Topogr.: Metrol. Prop. 5 (2017) 013001).
+
+    Parameters
+    ----------
+    H : float or array_like, dimensionless
+        Hurst exponent(s) of the power law, > -1/2.
+
+    Returns
+    -------
+    ndarray, dimensionless
+        The factor, of the shape of ``H``: pi at H = 1/2, 2 at H = 0, 4 at H = 1.
+
+    Raises
+    ------
+    ValueError
+        ``H`` <= -1/2 (the Abel integral diverges there).
     """
     H = as_float_array(H, "H")
     if np.any(H <= -0.5):
@@ -106,12 +140,23 @@ def abel_inverse(q, C1D, q_eval=None, n_nodes: int = 400) -> np.ndarray:
 
     Parameters
     ----------
-    q, C1D : array_like
+    q, C1D : array_like, rad/length and length^3
         The 1-D PSD table (q in rad/length, strictly increasing, > 0; C1D in length^3, > 0).
-    q_eval : array_like, optional
-        Where to evaluate C (default ``q``).
+    q_eval : array_like, rad/length, optional
+        Where to evaluate C, > 0 (default ``q``).
     n_nodes : int
         About how many Gauss-Legendre nodes in t besides the panels that the table points add (>= 50).
+
+    Returns
+    -------
+    ndarray, length^4
+        Persson's isotropic C (convention ``"persson"``) at ``q_eval``, of its shape.
+
+    Raises
+    ------
+    ValueError
+        Tables of different lengths or shorter than 2, q not > 0 and strictly increasing, C1D not > 0,
+        ``q_eval`` not > 0 or ``n_nodes`` < 50.
     """
     q = as_float_array(q, "q")
     C1D = as_float_array(C1D, "C1D")
@@ -144,7 +189,21 @@ def abel_forward(psd, q) -> np.ndarray:
 
     :math:`C^{1D}(q) = 4\pi\int_q^{q_s} C(k)\,k\,dk/\sqrt{k^2-q^2}`, by Gauss-Legendre quadrature in
     :math:`t = \mathrm{arccosh}(k/q)` on panels split at the spectrum's kinks (a test and
-    plotting aid: what a profilometer would see on that surface).
+    plotting aid: what a profilometer would see on that surface).  Zero where q >= q_s.
+
+    Parameters
+    ----------
+    psd : PSD
+        The isotropic spectrum in Persson's convention (:class:`~persson_fp.SelfAffinePSD`,
+        :class:`~persson_fp.TabulatedPSD`).
+    q : float or array_like, rad/length
+        Wavenumbers along the scan, > 0.
+
+    Returns
+    -------
+    ndarray, length^3
+        The 1-D PSD :math:`C^{1D}(q)` with :math:`\langle h^2\rangle = \frac1\pi\int_0^\infty C^{1D}dq`,
+        of the shape of ``q``.
     """
     q = as_float_array(q, "q")
     x, w = np.polynomial.legendre.leggauss(24)
@@ -186,8 +245,15 @@ def to_persson(q, C, convention: str = "persson", q_unit: str = "rad/length", H=
 
     Returns
     -------
-    q_rad, C_persson : ndarray
-        The table in Persson's convention.
+    q_rad : ndarray, rad/length
+        The wavenumbers in radians per length.
+    C_persson : ndarray, length^4
+        The spectrum in Persson's convention (Xu et al. tutorial, ``E:PSD``).
+
+    Raises
+    ------
+    ValueError
+        An unknown convention or unit, or ``H`` with a convention other than ``"1d"``.
     """
     convention, q_unit = check_convention(convention, q_unit)
     q = as_float_array(q, "q")

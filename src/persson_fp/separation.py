@@ -1,7 +1,7 @@
 r"""Mean interfacial separation and normal contact stiffness in Persson's theory.
 
 With the elastic energy per nominal area :math:`U(\bar p) = U_{el}/A_n` (Xu et al. tutorial,
-``eq:Uel_original``; Persson, PRL 99 (2007) 125502; Yang & Persson, J. Phys.: Condens. Matter 20 (2008)
+``eq:Uel_original``; Persson, Phys. Rev. Lett. 99 (2007) 125502; Yang & Persson, J. Phys.: Condens. Matter 20 (2008)
 215214), the work done by the load gives the mean separation
 
 .. math::  \bar u(\bar p) = \int_{\bar p}^\infty \frac{1}{p'}\frac{dU}{dp'}\,dp'
@@ -38,7 +38,7 @@ spectrum's kinks, so every load costs one dot product.
 Small loads: :math:`\bar u \approx u_0 \ln(\beta E^*/\bar p)` (Persson 2007's
 :math:`\bar p \approx \beta E^* e^{-\bar u/u_0}`) with
 :math:`u_0 = \omega'(0)\frac{2}{E^*}\int d\sigma/q` and :math:`\beta` from the constant term
-(:meth:`MeanSeparation.small_load_law`).
+(:meth:`persson_fp.MeanSeparation.small_load_law`).
 
 This module imports no solver.
 """
@@ -144,6 +144,11 @@ def _weight(fudge, weighting):
 class MeanSeparation:
     r"""Mean separation, energy and stiffness of one surface and model, vectorised over loads.
 
+    Persson's relation between interfacial separation and load (Persson, Phys. Rev. Lett. 99 (2007) 125502)
+    with the energy weighting of Yang & Persson (J. Phys.: Condens. Matter 20 (2008) 215214) or the corrected
+    area of a fudge model; the formulas are in the module docstring (:mod:`persson_fp.separation`).  The
+    quadrature rule is built once here, so every load then costs one dot product.
+
     Parameters
     ----------
     psd : PSD
@@ -161,10 +166,20 @@ class MeanSeparation:
         The rule covers :math:`\sigma \in [\sigma_{max} e^{-\text{decades}\ln 10}, \sigma_{max}]` (>= 4); the part
         below contributes a fraction of order :math:`10^{-\text{decades}}` of :math:`\bar u` at small loads.
 
-    Attributes
-    ----------
-    u0, beta : float
-        The small-load law :math:`\bar p \approx \beta E^* e^{-\bar u/u_0}` (u0 in length, beta dimensionless).
+    Raises
+    ------
+    ValueError
+        ``psd`` not a :class:`~persson_fp.PSD`, an unknown weighting or fudge model, ``E_star`` not > 0,
+        ``n_per_unit`` not an integer >= 1, or ``decades`` < 4.
+
+    Notes
+    -----
+    After construction:
+
+    - ``u0`` (length) and ``beta`` (dimensionless): the small-load law
+      :math:`\bar p \approx \beta E^* e^{-\bar u/u_0}` (also :meth:`small_load_law`).
+    - ``sigma_max`` (pressure): :math:`\sqrt{V}` at the top magnification :math:`q_s/q_l`.
+    - ``psd``, ``E_star``, ``fudge`` (the resolved fudge-factor object), ``weighting``: the inputs.
     """
 
     def __init__(
@@ -232,30 +247,97 @@ class MeanSeparation:
         return out.reshape(np.shape(p_bar))
 
     def mean_separation(self, p_bar) -> np.ndarray:
-        r""":math:`\bar u(\bar p)` (length), any array shape of loads (pressure, > 0)."""
+        r"""Mean interfacial separation :math:`\bar u(\bar p)` (Persson, Phys. Rev. Lett. 99 (2007) 125502).
+
+        Parameters
+        ----------
+        p_bar : float or array_like, pressure
+            Nominal pressures, > 0, any shape.
+
+        Returns
+        -------
+        ndarray, length
+            :math:`\bar u` of the shape of ``p_bar`` (0-d for a scalar); it tends to 0 at full contact.
+        """
         return self._apply(self._w.g, p_bar)
 
     def energy(self, p_bar) -> np.ndarray:
-        r"""Elastic energy per nominal area :math:`U(\bar p)` (pressure x length) in this weighting."""
+        r"""Elastic energy per nominal area :math:`U(\bar p)` in this weighting.
+
+        Xu et al. tutorial, ``eq:Uel_original``, with the weight of the module docstring.
+
+        Parameters
+        ----------
+        p_bar : float or array_like, pressure
+            Nominal pressures, > 0, any shape.
+
+        Returns
+        -------
+        ndarray, pressure x length
+            :math:`U = U_{el}/A_n`, of the shape of ``p_bar``.
+        """
         return self._apply(self._w.omega, p_bar, extra=self.sigma)
 
     def dU_dp(self, p_bar) -> np.ndarray:
-        r""":math:`dU/d\bar p` (length)."""
+        r"""Derivative :math:`dU/d\bar p` of the elastic energy per nominal area with respect to the load.
+
+        Parameters
+        ----------
+        p_bar : float or array_like, pressure
+            Nominal pressures, > 0, any shape.
+
+        Returns
+        -------
+        ndarray, length
+            :math:`dU/d\bar p`, of the shape of ``p_bar``.
+        """
         return self._apply(self._w.domega, p_bar)
 
     def stiffness(self, p_bar) -> np.ndarray:
-        r"""Normal contact stiffness per nominal area :math:`K = -d\bar p/d\bar u = \bar p/(dU/d\bar p)`
-        (pressure / length)."""
+        r"""Normal contact stiffness per nominal area, :math:`K = -d\bar p/d\bar u = \bar p/(dU/d\bar p)`.
+
+        Parameters
+        ----------
+        p_bar : float or array_like, pressure
+            Nominal pressures, > 0, any shape.
+
+        Returns
+        -------
+        ndarray, pressure / length
+            K, of the shape of ``p_bar``.
+        """
         p = self._loads(p_bar)
         return p / self.dU_dp(p)
 
     def contact_area(self, p_bar) -> np.ndarray:
-        """The area the weighting uses at the top magnification (plain erf or the model's corrected A*)."""
+        r"""The contact area the weighting uses at the top magnification.
+
+        The plain-theory :math:`\mathrm{erf}(\bar p/\sqrt{2V})` (Xu et al. tutorial, ``eq:Area_Persson``) for
+        ``"yang-persson"`` or without a fudge factor, else the model's corrected A*.
+
+        Parameters
+        ----------
+        p_bar : float or array_like, pressure
+            Nominal pressures, > 0, any shape.
+
+        Returns
+        -------
+        ndarray, dimensionless
+            The area fraction in [0, 1], of the shape of ``p_bar``.
+        """
         p = self._loads(p_bar)
         return self._w.area(p / self.sigma_max)
 
     def small_load_law(self) -> tuple[float, float]:
-        r"""``(u0, beta)`` of :math:`\bar p \approx \beta E^* \exp(-\bar u/u_0)` (length, dimensionless)."""
+        r"""The small-load law :math:`\bar p \approx \beta E^* \exp(-\bar u/u_0)` (Persson 2007).
+
+        Returns
+        -------
+        u0 : float, length
+            Decay length of the load with the separation.
+        beta : float, dimensionless
+            Prefactor.
+        """
         return self.u0, self.beta
 
 
@@ -268,8 +350,30 @@ def _elastic_only(problem) -> None:
 
 
 def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:
-    r""":math:`\bar u` (length) at the loads of a :class:`~persson_fp.ContactProblem` (its spectrum, E* and
-    fudge factor), see :class:`MeanSeparation`.  Scalar for a scalar load."""
+    r"""Mean interfacial separation :math:`\bar u` at the loads of a contact problem.
+
+    Persson's theory (Persson, Phys. Rev. Lett. 99 (2007) 125502; Yang & Persson, J. Phys.: Condens. Matter
+    20 (2008) 215214) with the problem's spectrum, E* and fudge factor; see :class:`~persson_fp.MeanSeparation`
+    (which to use for many loads or for the energy and stiffness too).
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        The surface, modulus, loads and fudge factor (:class:`~persson_fp.ContactProblem`).
+    weighting : {"yang-persson", "corrected-area"}
+        Energy weighting of a fudge model (see :mod:`persson_fp.separation`).
+
+    Returns
+    -------
+    float or ndarray, length
+        :math:`\bar u` at each load: a float for a scalar load, else an array of shape ``(n_loads,)``.
+
+    Raises
+    ------
+    ValueError
+        A problem with a hardness or general coefficients (this is the elastic theory's separation; use
+        :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
+    """
     _elastic_only(problem)
     ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
     out = ms.mean_separation(problem.p_bar)
@@ -277,8 +381,29 @@ def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:
 
 
 def contact_stiffness(problem, weighting: str = "yang-persson") -> np.ndarray:
-    r"""Normal contact stiffness per nominal area :math:`K = -d\bar p/d\bar u` (pressure / length) at the loads
-    of a :class:`~persson_fp.ContactProblem`, see :class:`MeanSeparation`."""
+    r"""Normal contact stiffness per nominal area :math:`K = -d\bar p/d\bar u` at the loads of a contact problem.
+
+    From Persson's mean separation (Persson, Phys. Rev. Lett. 99 (2007) 125502), :math:`K = \bar p/(dU/d\bar p)`;
+    see :class:`~persson_fp.MeanSeparation`.
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        The surface, modulus, loads and fudge factor (:class:`~persson_fp.ContactProblem`).
+    weighting : {"yang-persson", "corrected-area"}
+        Energy weighting of a fudge model (see :mod:`persson_fp.separation`).
+
+    Returns
+    -------
+    float or ndarray, pressure / length
+        K at each load: a float for a scalar load, else an array of shape ``(n_loads,)``.
+
+    Raises
+    ------
+    ValueError
+        A problem with a hardness or general coefficients (this is the elastic theory's separation; use
+        :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
+    """
     _elastic_only(problem)
     ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
     out = ms.stiffness(problem.p_bar)
@@ -295,12 +420,15 @@ def separation_from_areas(psd: PSD, E_star, p_bar, zeta, A, fudge=None):
     deficit :math:`D = U_{full} - U` (no cancellation near full contact), a cubic spline of :math:`D/\bar p` in
     :math:`\ln\bar p`, and D taken constant beyond the largest load, where therefore :math:`\bar u = 0`: that
     load should be near full contact.
-    Accuracy follows the grids (tests: ~1e-3 relative on 100 stations x 60 loads against :class:`MeanSeparation`).
+    Accuracy follows the grids (tests: ~1e-3 relative on 100 stations x 60 loads against
+    :class:`~persson_fp.MeanSeparation`).
 
     Parameters
     ----------
     psd : PSD
+        The spectrum (Persson's convention) that defines V(zeta).
     E_star : float, pressure
+        Plane-strain modulus :math:`E/(1-\nu^2)` (> 0).
     p_bar : array_like, shape (n_loads,), pressure
         Strictly increasing loads (>= 3), > 0.
     zeta : array_like, shape (n_zeta,)
@@ -312,8 +440,16 @@ def separation_from_areas(psd: PSD, E_star, p_bar, zeta, A, fudge=None):
 
     Returns
     -------
-    U, u : ndarray, shape (n_loads,)
-        Energy per nominal area (pressure x length) and mean separation (length).
+    U : ndarray, shape (n_loads,), pressure x length
+        Elastic energy per nominal area.
+    u : ndarray, shape (n_loads,), length
+        Mean separation.
+
+    Raises
+    ------
+    ValueError
+        ``psd`` not a PSD, ``E_star`` not > 0, loads not strictly increasing (>= 3, > 0), zeta not strictly
+        increasing in [1, zeta_max] (>= 2), ``A`` of the wrong shape or outside [0, 1].
     """
     from scipy.interpolate import CubicSpline
 

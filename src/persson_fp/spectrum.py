@@ -474,7 +474,8 @@ class TabulatedPSD(PSD):
         What ``C`` is (:mod:`persson_fp.conventions`): ``"persson"`` (default, as above), ``"iso2d"``
         (2-D FFT / SurfaceTopography ``power_spectrum_from_area``, :math:`C_{iso} = (2\pi)^2 C`),
         ``"1d"`` (1-D PSD of line scans, Abel-inverted) or ``"q/pi*2d"`` (contact.engineering's
-        "q/π × 2D PSD" series).  The table is converted once; :attr:`convention` records the input's.
+        "q/π × 2D PSD" series; Jacobs, Junge & Pastewka, Surf. Topogr.: Metrol. Prop. 5 (2017) 013001).
+        The table is converted once; the attribute ``convention`` records the input's.
     q_unit : str, optional
         ``"rad/length"`` (default, q = 2 pi / wavelength) or ``"1/length"`` (1 / wavelength, densities
         per unit 1/wavelength).

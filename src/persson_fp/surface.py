@@ -1,10 +1,11 @@
 r"""Measured surfaces in: height maps, line scans, contact.engineering exports, SurfaceTopography objects.
 
-Every importer returns a :class:`MeasuredSurface`: Persson's isotropic spectrum as a
-:class:`~persson_fp.spectrum.TabulatedPSD` (convention ``"persson"``, :math:`\langle h^2\rangle =
+Every importer returns a :class:`~persson_fp.MeasuredSurface`: Persson's isotropic spectrum as a
+:class:`~persson_fp.TabulatedPSD` (convention ``"persson"``, :math:`\langle h^2\rangle =
 2\pi\int qC\,dq`, Xu et al. tutorial ``eq:variance_h_continuous``), the rms height and slope of the height data
 themselves, and notes on what was dropped.  The import compares the spectrum's rms height and slope with the
-height data's and warns when they differ by more than 1 %.
+height data's and warns when they differ by more than 1 %.  Conventions of the spectra read are those of
+Jacobs, Junge & Pastewka, Surf. Topogr.: Metrol. Prop. 5 (2017) 013001 (:mod:`persson_fp.conventions`).
 
 Spectrum of a height map (periodic square or rectangle :math:`L_x\times L_y`, :math:`N_x\times N_y` points):
 :math:`\hat h_k = N^{-1}\sum h\,e^{-i q_k\cdot x}`, :math:`C(q_k) = \frac{L_xL_y}{(2\pi)^2}|\hat h_k|^2`, so
@@ -19,8 +20,8 @@ incomplete; the notes give the share of :math:`\langle h^2\rangle` and :math:`\l
 of them carried.  Non-periodic data are detrended (plane) and windowed (Hann by default, normalised to keep the
 power).
 
-This module imports no solver and never imports SurfaceTopography (:func:`from_surface_topography` only reads
-the object it is given).
+This module imports no solver and never imports SurfaceTopography
+(:func:`~persson_fp.from_surface_topography` only reads the object it is given).
 """
 
 from __future__ import annotations
@@ -71,13 +72,20 @@ class MeasuredSurface:
 
     @property
     def rms_errors(self) -> tuple[float, float] | None:
-        """(rms height, rms slope) of the spectrum relative to the height data, minus 1."""
+        """(rms height, rms slope) of the spectrum relative to the height data, minus 1; None without heights."""
         if self.rms_height_data is None:
             return None
         return self.psd.rms_height / self.rms_height_data - 1.0, self.psd.rms_slope / self.rms_slope_data - 1.0
 
     def describe(self) -> str:
-        """A few lines for a report or a CSV header: source, convention, rms values, notes."""
+        """A few lines for a report or a CSV header: source, convention, rms values, notes.
+
+        Returns
+        -------
+        str
+            Lines separated by newlines: the source, the spectrum's input convention and band (rad/length),
+            its rms height (length) and slope, the height data's with their relative differences, the notes.
+        """
         p = self.psd
         lines = [
             f"source: {self.source}",
@@ -237,10 +245,21 @@ def psd_from_heightmap(
         its mean square so that the power is kept.
     bins_per_decade : int
         Log-spaced annuli per decade of q above the region where they are one lattice step wide (>= 4).
+    source : str
+        Description stored in :attr:`MeasuredSurface.source <persson_fp.MeasuredSurface>`.
 
     Returns
     -------
     MeasuredSurface
+        Persson's spectrum (q in rad/length of the unit of ``size``, C in length^4), the rms height and slope
+        of the data and notes on what was dropped; a ``UserWarning`` when the spectrum's rms height or slope
+        differs from the data's by more than 1 %.
+
+    Raises
+    ------
+    ValueError
+        ``heights`` not 2-D with >= 4 points per side or flat, ``size`` not > 0, ``bins_per_decade`` < 4, an
+        unknown ``window``.
     """
     h = as_float_array(heights, "heights")
     if h.ndim != 2 or min(h.shape) < 4:
@@ -324,7 +343,22 @@ def psd_from_profiles(
     periodic, window, bins_per_decade
         As in :func:`psd_from_heightmap` (default: not periodic, so each scan is detrended and Hann-windowed).
     H : float, optional
-        Convert with the power-law Abel factor of this Hurst exponent instead of numerically.
+        Convert with the power-law Abel factor of this Hurst exponent instead of numerically
+        (:func:`persson_fp.conventions.abel_factor`).
+    source : str
+        Description stored in :attr:`MeasuredSurface.source <persson_fp.MeasuredSurface>`.
+
+    Returns
+    -------
+    MeasuredSurface
+        Persson's isotropic spectrum (q in rad/length of the unit of ``length``, C in length^4), the rms height
+        and slope of the data and notes; a ``UserWarning`` when their rms values differ by more than 1 %.
+
+    Raises
+    ------
+    ValueError
+        ``profiles`` not 1-D or 2-D with >= 8 points, flat or too short to carry power in 3 bins, ``length``
+        not > 0, ``bins_per_decade`` < 4, an unknown ``window``.
     """
     z = as_float_array(profiles, "profiles")
     if z.ndim == 1:
@@ -382,8 +416,29 @@ def psd_from_profiles(
 
 
 def read_heightmap(path, size, *, periodic: bool = False, **kwargs) -> MeasuredSurface:
-    """Read a 2-D height map (``.npy``, or text readable by ``numpy.loadtxt``: whitespace or comma separated)
-    and import it with :func:`psd_from_heightmap` (heights and ``size`` in one length unit)."""
+    """Read a 2-D height map from a file and import it with :func:`psd_from_heightmap`.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A ``.npy`` file, or text readable by ``numpy.loadtxt`` (whitespace or comma separated, ``#`` comments).
+    size : float or (float, float), length
+        Physical size :math:`L_x` (and :math:`L_y`) of the map, in the unit of the heights.
+    periodic : bool
+        True for periodic data; False (default, measurements): detrended (plane) and windowed.
+    **kwargs
+        Passed on to :func:`psd_from_heightmap` (``window``, ``bins_per_decade``).
+
+    Returns
+    -------
+    MeasuredSurface
+        As :func:`psd_from_heightmap`, with the file name in ``source``.
+
+    Raises
+    ------
+    ValueError
+        A missing or unreadable file, or bad heights or size (see :func:`psd_from_heightmap`).
+    """
     import os
 
     if not os.path.exists(path):
@@ -411,7 +466,27 @@ def read_contact_engineering_csv(path, series: str = "q/π × 2D PSD", H: float 
     "PSD (m³)" (units as in the header).  ``series`` picks "q/π × 2D PSD" (default; :math:`Y = q C_{iso}/\pi`,
     converted by :math:`C = Y/(4\pi q)`), "1D PSD along x" or "1D PSD along y" (Abel-inverted, numerically or
     with the factor of ``H``).  Rows that are not finite or not > 0 (masked points) are dropped with a note.
-    The result is in metres (q in rad/m, C in m⁴).
+    The conventions are those of Jacobs, Junge & Pastewka, Surf. Topogr.: Metrol. Prop. 5 (2017) 013001.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The CSV file.
+    series : str
+        One of the keys of ``CE_SERIES``: "q/π × 2D PSD", "1D PSD along x", "1D PSD along y".
+    H : float, optional
+        For a 1-D series: convert with the power-law Abel factor of this Hurst exponent instead of numerically.
+
+    Returns
+    -------
+    MeasuredSurface
+        Persson's spectrum in metres (q in rad/m, C in m⁴), no height data (``rms_height_data`` is None).
+
+    Raises
+    ------
+    ValueError
+        An unknown series, a missing or empty file, a file without the expected columns, or fewer than 2
+        usable points in the series.
     """
     import csv
     import os
@@ -473,6 +548,24 @@ def from_surface_topography(topography, **kwargs) -> MeasuredSurface:
     Uses the object's heights, physical sizes and periodicity with :func:`psd_from_heightmap` or
     :func:`psd_from_profiles` (so the result is in the topography's length unit).  Needs the optional
     ``SurfaceTopography`` package only for the object itself: nothing is imported here.
+
+    Parameters
+    ----------
+    topography : SurfaceTopography Topography or UniformLineScan
+        Any object with ``heights()``, ``physical_sizes`` and ``is_periodic``.
+    **kwargs
+        Passed on to :func:`psd_from_heightmap` or :func:`psd_from_profiles` (``window``,
+        ``bins_per_decade``, and ``H`` for a line scan).
+
+    Returns
+    -------
+    MeasuredSurface
+        Persson's spectrum in the topography's length unit (q in rad/length, C in length^4).
+
+    Raises
+    ------
+    ValueError
+        ``topography`` lacks those attributes, or its data are rejected by the importer.
     """
     try:
         h = np.asarray(topography.heights(), dtype=float)
