@@ -64,11 +64,12 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
+from scipy.special import erf
 
 from ..exact import image_pdf
 from ..fudge import NoFudge
 from ..solution import SolverError
-from .base import Solver, SolverOutput, check_float, check_int
+from .base import _HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
 
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
 
@@ -199,7 +200,7 @@ class MethodOfLinesSolver(Solver):
             raise ValueError(f"initial must be 'exact' or 'delta', got {o['initial']!r}")
         if o["initial"] == "delta" and (o["zeta0"] is not None or o["tau0_fraction"] is not None):
             raise ValueError("zeta0 / tau0_fraction apply to initial='exact' only")
-        o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 1e3)
+        o["k_domain"] = check_k_domain(o["k_domain"], 1e3)
 
     # -- grid and start ---------------------------------------------------------------------------
     def _grid(self):
@@ -208,8 +209,16 @@ class MethodOfLinesSolver(Solver):
         if o["n_p"] is None:
             tau_first = float(np.min(self.problem.tau(self.zeta_out[0])))
             h = _H_OVER_SIGMA[o["order"]] * np.sqrt(tau_first)
-            o["n_p"] = int(min(max(np.ceil(L / h) + 1, 16), _N_P_AUTO_MAX))
+            need = np.ceil(L / h) + 1
+            if need > _N_P_AUTO_MAX:  # a PDF too narrow for the domain: refuse rather than under-resolve
+                raise ValueError(
+                    f"mol: the first station zeta = {self.zeta_out[0]:.6g} needs n_p = {need:.3g} grid points "
+                    f"(> {_N_P_AUTO_MAX}) to resolve sqrt(tau) = {np.sqrt(tau_first):.3e} on [0, {L:.3e}]; "
+                    f"start zeta_out later, use closer loads, or {_HANDLERS}"
+                )
+            o["n_p"] = int(max(need, 16))
         p = np.linspace(0.0, L, o["n_p"])
+        self.check_resolved(p[1] - p[0])
         return p, p[1] - p[0]
 
     def _start(self, h):
@@ -380,7 +389,11 @@ class MethodOfLinesSolver(Solver):
         nl, m = sysm.n_loads, sysm.m
         integ = o["integrator"]
         tau_scale = float(np.max(pr.tau(pr.zeta_max)))
-        atol = o["atol"] if o["atol"] is not None else o["rtol"] * 1e-2 / np.sqrt(tau_scale)
+        # default atol ~ rtol x the size of P0 ~ A* / sqrt(tau), per load: a tiny load (A* ~ p_bar / sqrt(tau))
+        # keeps its relative accuracy (an atol fixed at 1/sqrt(tau) cost it 5 % at p_bar / sqrt(V) = 1e-8)
+        A_min = np.minimum(erf(pr.p_bar / np.sqrt(2.0 * pr.tau_max)), 1.0)
+        atol_l = o["rtol"] * 1e-2 * A_min / np.sqrt(tau_scale)
+        atol = o["atol"] if o["atol"] is not None else np.repeat(atol_l, m)
         kw = {"method": integ, "rtol": o["rtol"], "atol": atol}
         if integ in _STIFF:
             jac = sysm.jac
@@ -398,7 +411,8 @@ class MethodOfLinesSolver(Solver):
 
             kw["jac"] = jac
         if sysm.augmented:
-            atol_v = np.full(sysm.y0.size, atol)
+            atol_v = np.full(sysm.y0.size, 0.0)
+            atol_v[: nl * m] = atol
             atol_v[nl * m :] = o["rtol"] * tau_scale * 1e-2
             kw["atol"] = atol_v
         zeta_out = self.zeta_out
