@@ -77,7 +77,7 @@ class ContactProblem:
         if pb.size == 0:
             raise ValueError("p_bar must hold at least one load")
         if np.any(pb <= 0):
-            raise ValueError(f"p_bar must be > 0 (every load), got {pb[pb <= 0].ravel()[0]!r}")
+            raise ValueError(f"p_bar must be > 0 (every load), got {float(pb[pb <= 0].ravel()[0])!r}")
         if np.any(pb > 1e150):
             raise ValueError(
                 f"p_bar must be <= 1e150 (p_bar^2 must be representable; rescale units), got {float(pb.max())!r}"
@@ -86,7 +86,13 @@ class ContactProblem:
         self.p_bar = np.atleast_1d(pb).astype(float)
         self.p_bar.setflags(write=False)
         self.fudge = _fudge.resolve(fudge)
-        self._V_max = float(self.psd.V(None, self.E_star))
+        with np.errstate(over="ignore", under="ignore"):
+            self._V_max = float(self.psd.V(None, self.E_star))
+        if not (np.isfinite(self._V_max) and self._V_max > 0):  # V = E*^2 <|grad h|^2> / 4 out of range
+            raise ValueError(
+                f"E_star = {self.E_star!r} and the spectrum give V(zeta_max) = {self._V_max!r}, outside floating-point "
+                "range (V = E_star^2 <|grad h|^2> / 4, eq:VV_relation); rescale the pressure or length unit"
+            )
         self._tau_max = None  # (n_loads,), on first use
         self._frozen = True
 

@@ -32,7 +32,7 @@ def get_solver(method) -> type[Solver]:
     """The solver class of ``method`` (a name from ``METHODS`` or a :class:`Solver` subclass)."""
     if isinstance(method, type) and issubclass(method, Solver):
         return method
-    if method not in METHODS:
+    if not isinstance(method, str) or method not in METHODS:
         raise ValueError(f"method must be one of {sorted(METHODS)} or a Solver subclass, got {method!r}")
     if method in EXTRAS:
         pkg, extra = EXTRAS[method]
