@@ -145,10 +145,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
             )
         )
     elif checks["negative_P0"]:
-        msg = (
-            f"P0 has negative values down to {checks['min_P0']:.3e} "
-            "(oscillations: refine or use an L-stable scheme)"
-        )
+        msg = f"P0 has negative values down to {checks['min_P0']:.3e} (oscillations: refine or use an L-stable scheme)"
         sol.info.setdefault("warnings", []).append(msg)
         warnings.warn(f"{sol.method}: {msg}", RuntimeWarning, stacklevel=6)
 
@@ -443,7 +440,8 @@ class Solution:
         c = self.compare().final()
         return (
             f"{self.method}: n_p={self.p.size}, steps={self.info.get('steps')}, wall={self.wall_time * 1e3:.2f} ms, "
-            f"L1={c['L1']:.3e}, |dA*|={c['area_error']:.3e} ({c['area_error_rel']:.2e} relative), load drift={c['load_drift']:.3e}"
+            f"L1={c['L1']:.3e}, |dA*|={c['area_error']:.3e} ({c['area_error_rel']:.2e} relative), "
+            f"load drift={c['load_drift']:.3e}"
         )
 
     def plot(self, ax=None, **kwargs):

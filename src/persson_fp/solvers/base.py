@@ -120,9 +120,7 @@ Below 1e-10 the cell averages of the finite-volume and Chapman--Kolmogorov metho
 round-off (measured: 7e-4 relative A* error at 1e-14, 93 % at 1e-20); 'sines' and pf.exact are exact
 there.  Large loads are refused by the grid-resolution checks with the same hint."""
 
-_HANDLERS = (
-    "method 'sines' (p_bar / sqrt(tau) up to about 2e3) or the closed form pf.exact (any load) handle it"
-)
+_HANDLERS = "method 'sines' (p_bar / sqrt(tau) up to about 2e3) or the closed form pf.exact (any load) handle it"
 
 MIN_SIGMA_CELLS = 1.0
 """A cell method refuses a first station with sqrt(tau) < MIN_SIGMA_CELLS * dp (the PDF would be narrower
