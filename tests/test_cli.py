@@ -112,4 +112,4 @@ def test_solve_json_and_bad_method(tmp_path, capsys):
     assert main(["solve", "--method", "fvv"]) == 2
     assert "method must be one of" in capsys.readouterr().err
     assert main(["solve", "--method", "fv", "--n-p", "3"]) == 2
-    assert "n_p" in capsys.readouterr().err
+    assert "--n-p" in capsys.readouterr().err
