@@ -69,7 +69,7 @@ def available_methods() -> list[str]:
     return out
 
 
-def solve(problem, method="fv", zeta_out=None, **options):
+def solve(problem, method="fv", zeta_out=None, *, check=True, max_memory=None, max_time=None, **options):
     """Solve Persson's diffusion problem numerically and return a :class:`~persson_fp.Solution`.
 
     Parameters
@@ -81,6 +81,16 @@ def solve(problem, method="fv", zeta_out=None, **options):
         "chapman-kolmogorov", "monte-carlo".
     zeta_out : float or array, optional
         Output stations in (1, zeta_max]; default ``zeta_max``.
+    check : bool, default True
+        Check the invariants of the result (A* in [0, 1] and non-increasing, load balance, P0 >= 0,
+        finite; :func:`persson_fp.solution.check_invariants`): a breach raises
+        :class:`~persson_fp.SolverError`; ``False`` turns it into a ``RuntimeWarning``.
+    max_memory : float, optional
+        Memory budget in bytes (default ``solvers.base.MEMORY_BUDGET``, 4 GiB): a run estimated to
+        need more is refused with a ``ValueError`` stating the estimate.
+    max_time : float, optional
+        Run-time budget in seconds (default ``solvers.base.TIME_BUDGET``, 1 hour), checked the same way
+        for the methods with a time model (fv, chapman-kolmogorov, monte-carlo).
     **options
         Shared knobs (``n_p``, ``n_steps``, ``rtol``, ``atol``, ``scheme``) and
         the method's own options (``get_solver(method).OPTIONS``).
@@ -93,13 +103,16 @@ def solve(problem, method="fv", zeta_out=None, **options):
     Raises
     ------
     ValueError
-        Unknown method or an option out of range.
+        Unknown method, an option out of range, a load outside the method's range of relative accuracy
+        (the message names the method that handles it), or a run over the memory budget.
     TypeError
         A misspelt option.
     ImportError
         The method's optional package is missing (names the pip extra).
     InstabilityError
         The discrete evolution went unstable.
+    SolverError
+        The result breaks an invariant (with ``check=True``).
     """
     cls = get_solver(method)
-    return cls(problem, zeta_out=zeta_out, **options).run()
+    return cls(problem, zeta_out=zeta_out, check=check, max_memory=max_memory, max_time=max_time, **options).run()

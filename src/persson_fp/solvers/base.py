@@ -37,6 +37,10 @@ __all__ = [
     "MIN_SIGMA_CELLS",
     "K_DOMAIN_MIN",
     "LOAD_RATIO_RANGE",
+    "MEMORY_BUDGET",
+    "MEMORY_MODELS",
+    "TIME_BUDGET",
+    "TIME_MODELS",
 ]
 
 SHARED_KNOBS = ("n_p", "n_steps", "rtol", "atol", "scheme", "zeta_out")
@@ -122,6 +126,38 @@ there.  Large loads are refused by the grid-resolution checks with the same hint
 
 _HANDLERS = "method 'sines' (p_bar / sqrt(tau) up to about 2e3) or the closed form pf.exact (any load) handle it"
 
+MEMORY_BUDGET = 4 * 2**30
+"""Default ``max_memory`` (bytes) of a solve: 4 GiB.  Override per call, ``pf.solve(..., max_memory=...)``."""
+
+MEMORY_MODELS = {
+    # (options, n_loads, n_stations, with_fudge) -> bytes, fitted to tracemalloc peaks (reference problem)
+    # fv: 85 MB at n_p = 2e4, 100 steps; 1.67 GB at 2000 steps (the trajectory of one load is kept)
+    "fv": lambda o, nl, nz, f: 48.0 * o["n_p"] * (o["n_steps"] + 10) + 160.0 * o["n_p"] * nl,
+    # mol: 0.38 GB at n_p = 2e4, 1.8 GB at 8e4, 1.3 GB for 50 loads x 2000 points (dense output of BDF)
+    "mol": lambda o, nl, nz, f: 25e3 * o["n_p"] * nl,
+    # Chapman--Kolmogorov: 22 MB at n_p = 2e4 (banded kernel)
+    "chapman-kolmogorov": lambda o, nl, nz, f: 1e3 * o["n_p"] * nl + 8.0 * o["n_p"] * nl * nz,
+    # Monte Carlo: histograms (4 arrays per station and load), one chunk of temporaries, all walkers with S(A*)
+    "monte-carlo": lambda o, nl, nz, f: (
+        32.0 * o["n_p"] * nl * nz
+        + 64.0 * min(o["chunk_size"], o["n_walkers"] * nl)
+        + (16.0 * o["n_walkers"] * nl if f else 0.0)
+    ),
+}
+"""Peak-memory estimates (bytes) per method, checked before anything is allocated (:meth:`Solver.check_memory`)."""
+
+TIME_BUDGET = 3600.0
+"""Default ``max_time`` (seconds) of a solve.  Override per call, ``pf.solve(..., max_time=...)``."""
+
+TIME_MODELS = {
+    # seconds, from single-core timings of the reference problem (order of magnitude: they bound runaway
+    # requests such as n_walkers = 1e9, not the ordinary ones)
+    "fv": lambda o, nl, nz, f: 1.2e-7 * o["n_p"] * (o["n_steps"] + 10) * (1.0 + nl / 8.0),
+    "chapman-kolmogorov": lambda o, nl, nz, f: 3.5e-6 * o["n_p"] * (o["n_steps"] + nz) * nl,
+    "monte-carlo": lambda o, nl, nz, f: 1.6e-7 * o["n_walkers"] * nl * (o["n_steps"] + nz),
+}
+"""Run-time estimates (seconds) per method, checked with the memory (:meth:`Solver.check_memory`)."""
+
 MIN_SIGMA_CELLS = 1.0
 """A cell method refuses a first station with sqrt(tau) < MIN_SIGMA_CELLS * dp (the PDF would be narrower
 than a cell); the start-up is placed at sqrt(tau0) >= 2 dp where the first station allows it."""
@@ -163,11 +199,15 @@ class Solver:
     OPTIONS: dict = {}
     """Options of the method with their defaults (shared knobs it uses included)."""
 
-    def __init__(self, problem: ContactProblem, zeta_out=None, *, check=True, **options):
+    def __init__(
+        self, problem: ContactProblem, zeta_out=None, *, check=True, max_memory=None, max_time=None, **options
+    ):
         if not isinstance(problem, ContactProblem):
             raise ValueError(f"problem must be a ContactProblem, got {type(problem).__name__}")
         self.problem = problem
         self.check = check_bool(check, "check")
+        self.max_memory = MEMORY_BUDGET if max_memory is None else check_float(max_memory, "max_memory", 0.0)
+        self.max_time = TIME_BUDGET if max_time is None else check_float(max_time, "max_time", 0.0)
         known = set(self.OPTIONS)
         for key in list(options):
             if key in known:
@@ -183,6 +223,7 @@ class Solver:
         self.zeta_out = self._check_zeta_out(zeta_out)
         self.validate()
         self.check_load_range()
+        self.check_memory()
 
     # -- to be written by a method ------------------------------------------------------------
     def validate(self) -> None:
@@ -222,6 +263,34 @@ class Solver:
                     f"{self.name}: the load p_bar / sqrt(tau(zeta_max)) = {r:.3g} is {side}, where this method "
                     f"loses its relative accuracy; {_HANDLERS}"
                 )
+
+    def check_memory(self, n_p=None) -> None:
+        """Refuse a run whose estimated peak memory (:data:`MEMORY_MODELS`) exceeds ``max_memory``
+        (default :data:`MEMORY_BUDGET`), with a ``ValueError`` that states the estimate.
+
+        ``n_p``: the grid size where the method fixes it only later (mol's automatic grid).
+        """
+        model = MEMORY_MODELS.get(self.name)
+        o = dict(self.opts)
+        if n_p is not None:
+            o["n_p"] = n_p
+        if model is None or o.get("n_p", 0) is None:
+            return
+        args = (o, self.problem.n_loads, self.zeta_out.size, self.problem.fudge.name != "none")
+        need = float(model(*args))
+        secs = float(TIME_MODELS[self.name](*args)) if self.name in TIME_MODELS else 0.0
+        if secs > self.max_time:
+            raise ValueError(
+                f"{self.name}: this run would take about {secs:.3g} s (estimate), more than max_time = "
+                f"{self.max_time:.3g} s; use a coarser grid (n_p, n_steps), fewer loads or walkers, or pass a "
+                "larger max_time (seconds)"
+            )
+        if need > self.max_memory:
+            raise ValueError(
+                f"{self.name}: this run would need about {need / 2**30:.3g} GiB of memory (estimate), more than "
+                f"max_memory = {self.max_memory / 2**30:.3g} GiB; use a coarser grid (n_p, n_steps), fewer loads or "
+                "walkers, or pass a larger max_memory (bytes) if the machine has it"
+            )
 
     # -- shared machinery ------------------------------------------------------------------------
     @functools.cached_property

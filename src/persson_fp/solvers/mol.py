@@ -217,6 +217,7 @@ class MethodOfLinesSolver(Solver):
                     f"start zeta_out later, use closer loads, or {_HANDLERS}"
                 )
             o["n_p"] = int(max(need, 16))
+        self.check_memory(o["n_p"])
         p = np.linspace(0.0, L, o["n_p"])
         self.check_resolved(p[1] - p[0])
         return p, p[1] - p[0]
