@@ -56,13 +56,19 @@ def _is_real_scalar(value) -> bool:
     return isinstance(value, (int, float, np.integer, np.floating))
 
 
+MAX_INT = 10**9
+"""Upper bound of an integer option given without its own (grid sizes, steps, iterations, walkers)."""
+
+
 def check_int(value, name: str, lo: int, hi: int | None = None) -> int:
-    """An integer in [lo, hi] or a ``ValueError`` naming ``name`` and the range.
+    """An integer in [lo, hi] (hi default :data:`MAX_INT`) or a ``ValueError`` naming ``name`` and the range.
 
     Bools, complex numbers, strings, lists, NaN and inf are refused (never an ``OverflowError``);
     integral floats such as ``1e3`` are accepted.
     """
-    rng = f"[{lo}, {hi}]" if hi is not None else f">= {lo}"
+    if hi is None:  # no option is meant to be astronomically large: 1e300 iterations is a hang
+        hi = MAX_INT
+    rng = f"[{lo}, {hi}]"
     if not _is_real_scalar(value):
         raise ValueError(f"{name} must be an integer {rng}, got {value!r}")
     if isinstance(value, (float, np.floating, np.ndarray)):
@@ -282,14 +288,14 @@ class Solver:
         if secs > self.max_time:
             raise ValueError(
                 f"{self.name}: this run would take about {secs:.3g} s (estimate), more than max_time = "
-                f"{self.max_time:.3g} s; use a coarser grid (n_p, n_steps), fewer loads or walkers, or pass a "
-                "larger max_time (seconds)"
+                f"{self.max_time:.3g} s; use a coarser grid (n_p, n_steps), fewer loads or walkers (n_walkers), "
+                "or pass a larger max_time (seconds)"
             )
         if need > self.max_memory:
             raise ValueError(
                 f"{self.name}: this run would need about {need / 2**30:.3g} GiB of memory (estimate), more than "
                 f"max_memory = {self.max_memory / 2**30:.3g} GiB; use a coarser grid (n_p, n_steps), fewer loads or "
-                "walkers, or pass a larger max_memory (bytes) if the machine has it"
+                "walkers (n_walkers), or pass a larger max_memory (bytes) if the machine has it"
             )
 
     # -- shared machinery ------------------------------------------------------------------------

@@ -187,8 +187,16 @@ class MethodOfLinesSolver(Solver):
         o = self.opts
         if o["n_p"] is not None:
             o["n_p"] = check_int(o["n_p"], "n_p", 8, 10_000_000)
-        if o["order"] not in (2, 4):
-            raise ValueError(f"order must be 2 or 4, got {o['order']!r}")
+        if not (
+            isinstance(o["order"], (int, np.integer)) and not isinstance(o["order"], bool) and o["order"] in (2, 4)
+        ):
+            shown = o["order"].item() if isinstance(o["order"], np.generic) else o["order"]
+            raise ValueError(f"order must be 2 or 4, got {shown!r}")
+        o["order"] = int(o["order"])
+        if o["tau0_fraction"] is not None:
+            o["tau0_fraction"] = check_float(o["tau0_fraction"], "tau0_fraction", 0.0, 1.0)
+        if o["zeta0"] is not None:
+            o["zeta0"] = check_float(o["zeta0"], "zeta0", 1.0, float(self.zeta_out[0]), lo_open=False)
         if o["integrator"] not in _STIFF + _EXPLICIT:
             raise ValueError(f"integrator must be one of {list(_STIFF + _EXPLICIT)}, got {o['integrator']!r}")
         o["rtol"] = check_float(o["rtol"], "rtol", 0.0, 1.0)
