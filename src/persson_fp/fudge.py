@@ -124,6 +124,8 @@ class NoFudge(FudgeFactor):
 
 
 def _check_gamma(gamma, name, lo, hi):
+    if isinstance(gamma, (bool, np.bool_, str, bytes)) or np.iscomplexobj(gamma) or np.ndim(gamma) != 0:
+        raise ValueError(f"gamma of {name} must be a number in ({lo}, {hi}], got {gamma!r}")
     try:
         g = float(gamma)
     except (TypeError, ValueError):

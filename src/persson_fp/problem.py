@@ -99,10 +99,12 @@ class ContactProblem:
     # -- construction helpers ---------------------------------------------------
     @classmethod
     def reference(cls, fudge=None, p_bar_ratio=0.5, H: float = 0.8, zeta_max: float = 128.0):
-        """DESIGN's reference problem: H = 0.8, q_l = 1, q_r = 2, q_s = ``zeta_max``,
+        """The reference problem of the tests and benchmarks: H = 0.8, q_l = 1, q_r = 2, q_s = ``zeta_max``,
         rms slope 0.1, E* = 1 and p_bar = ``p_bar_ratio`` * sqrt(V(zeta_max))."""
         psd = SelfAffinePSD.from_rms_slope(0.1, H=H, q_l=1.0, q_r=2.0, q_s=zeta_max)
         ratio = as_float_array(p_bar_ratio, "p_bar_ratio")
+        if ratio.ndim > 1 or ratio.size == 0 or np.any(ratio <= 0):
+            raise ValueError(f"p_bar_ratio must be a number > 0 or a non-empty 1-D array of them, got {p_bar_ratio!r}")
         return cls(psd, E_star=1.0, p_bar=ratio * np.sqrt(psd.V(E_star=1.0)), fudge=fudge)
 
     def with_loads(self, p_bar) -> ContactProblem:

@@ -338,13 +338,13 @@ class TabulatedPSD(PSD):
         if C.shape != q.shape:
             raise ValueError(f"C must have the same length as q ({q.size}), got {C.size}")
         if np.any(q <= 0):
-            raise ValueError(f"q must be > 0 everywhere, got {q[q <= 0][0]!r}")
+            raise ValueError(f"q must be > 0 everywhere, got {float(q[q <= 0][0])!r}")
         if np.any(np.diff(q) <= 0):
             i = int(np.argmax(np.diff(q) <= 0))
-            raise ValueError(f"q must be strictly increasing; q[{i + 1}] = {q[i + 1]!r} <= q[{i}] = {q[i]!r}")
+            raise ValueError(f"q must be strictly increasing; q[{i + 1}] = {float(q[i + 1])!r} <= q[{i}] = {float(q[i])!r}")
         if np.any(C <= 0):
             i = int(np.argmax(C <= 0))
-            raise ValueError(f"C must be > 0 everywhere (log-log interpolation); C[{i}] = {C[i]!r}")
+            raise ValueError(f"C must be > 0 everywhere (log-log interpolation); C[{i}] = {float(C[i])!r}")
         q_l = float(q[0]) if q_l is None else float(check_in_range(q_l, "q_l", q[0], q[-1], rtol=0.0))
         q_s = float(q[-1]) if q_s is None else float(check_in_range(q_s, "q_s", q[0], q[-1], rtol=0.0))
         if not q_s > q_l:
