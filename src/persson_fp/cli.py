@@ -104,6 +104,17 @@ def _save_figure(fig, path, dpi):
         plt.close(fig)
 
 
+def _make_parent(path, option: str):
+    """Create the folder of ``path``; a regular file where a folder is needed is a one-line error."""
+    parent = os.path.dirname(os.path.abspath(path))
+    probe = parent
+    while not os.path.exists(probe):
+        probe = os.path.dirname(probe)
+    if not os.path.isdir(probe):
+        raise CLIError(f"{option}: {probe} is not a folder (in {path})")
+    os.makedirs(parent, exist_ok=True)
+
+
 def _check_new_file(path, force: bool, option: str):
     """Refuse to replace an existing regular file unless ``--force``."""
     if path and os.path.isfile(path) and not force:
@@ -196,7 +207,7 @@ def _problem(args, fudge=None) -> ContactProblem:
         ratio = np.array([0.5] if args.p_bar_ratio is None else args.p_bar_ratio)
         if np.any(~np.isfinite(ratio)) or np.any(ratio <= 0):
             raise CLIError("--p-bar-ratio must be > 0 and finite")
-        p_bar = ratio * np.sqrt(psd.V(E_star=args.E_star))
+        p_bar = ratio * np.sqrt(ContactProblem(psd, args.E_star, 1.0).V_max)  # (checks V's range first)
     return ContactProblem(psd, args.E_star, p_bar[0] if p_bar.size == 1 else p_bar, f)
 
 
@@ -309,8 +320,7 @@ def cmd_solve(args) -> int:
         )
     if args.output:
         path = args.output
-        d = os.path.dirname(os.path.abspath(path))
-        os.makedirs(d, exist_ok=True)
+        _make_parent(path, "--output")
         if path.endswith(".json"):
             data = {
                 "method": sol.method,
@@ -331,6 +341,7 @@ def cmd_solve(args) -> int:
                     w.writerow([f"{p:.12g}"] + [f"{v:.12g}" for v in sol.P0_all[-1, :, i]])
         print(f"P0 at zeta_max written to {path}")
     if args.plot:
+        _make_parent(args.plot, "--plot")
         _save_figure(sol.plot(), args.plot, dpi=120)
         print(f"figure written to {args.plot}")
     return 0

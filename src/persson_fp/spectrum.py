@@ -341,7 +341,9 @@ class TabulatedPSD(PSD):
             raise ValueError(f"q must be > 0 everywhere, got {float(q[q <= 0][0])!r}")
         if np.any(np.diff(q) <= 0):
             i = int(np.argmax(np.diff(q) <= 0))
-            raise ValueError(f"q must be strictly increasing; q[{i + 1}] = {float(q[i + 1])!r} <= q[{i}] = {float(q[i])!r}")
+            raise ValueError(
+                f"q must be strictly increasing; q[{i + 1}] = {float(q[i + 1])!r} <= q[{i}] = {float(q[i])!r}"
+            )
         if np.any(C <= 0):
             i = int(np.argmax(C <= 0))
             raise ValueError(f"C must be > 0 everywhere (log-log interpolation); C[{i}] = {float(C[i])!r}")
