@@ -79,9 +79,9 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
     """
     tol = {**DEFAULT_TOLERANCES, **(tolerances or {})}
     p_bar = sol.problem.p_bar
-    A = sol.contact_area_all
+    A = sol.contact_area_all  # (a model with more contact states checks each area and their sum here)
     P = sol.P0_all
-    load = sol.load_all
+    load = sol.load_all  # the supported load; a model with a yield wall adds its plastic share here
     checks = {}
     breaches = []  # (invariant, message)
     where = _where(sol)
