@@ -46,7 +46,7 @@ CASES = {
     "n-p negative": (lambda t, f: ["solve", "--n-p", "-3"], "--n-p must be an integer"),
     "mol 1e6": (lambda t, f: ["solve", "--method", "mol", "--p-bar-ratio", "1e6"], "pf.exact"),
     "ck 1e-100": (lambda t, f: ["solve", "--method", "chapman-kolmogorov", "--p-bar-ratio", "1e-100"], "'sines'"),
-    "n-p huge": (lambda t, f: ["solve", "--n-p", "100000000"], "GiB of memory"),
+    "n-p huge": (lambda t, f: ["solve", "--n-p", "1e8"], "GiB of memory"),
     "n-loads huge": (lambda t, f: ["area", "--n-loads", "100000000", "--output", str(t)], "--n-loads"),
     "bad gamma": (lambda t, f: ["solve", "--fudge", "YP08", "--gamma", "2"], "gamma"),
     # options that would be ignored
@@ -64,6 +64,17 @@ def test_error_is_one_line_and_exit_2(case, tmp_path, a_file, capsys):
     make, word = CASES[case]
     rc = main(make(tmp_path, a_file))
     _one_line_error(capsys, rc, word)
+
+
+@pytest.mark.parametrize(
+    "argv", [["solve", "--n-p", "1e6.5"], ["report", "--fudge", "XYZ"], ["area", "--n-loads"], ["solve", "--bogus"]]
+)
+def test_argparse_errors_are_one_line_too(argv, capsys):
+    with pytest.raises(SystemExit) as e:
+        main(argv)
+    assert e.value.code == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "error:" in err and "--help" in err
 
 
 def test_dev_full_is_a_one_line_error(capsys):

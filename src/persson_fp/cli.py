@@ -390,10 +390,30 @@ def cmd_area(args) -> int:
     return 0
 
 
+def _count(text: str) -> int:
+    """An integer argument; "1e6" is read as 1000000 (an integral number in any float notation)."""
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+    if not (np.isfinite(x) and x == np.floor(x) and abs(x) < 2**63):
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}")
+    return int(x)
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with its errors on one line (no usage block): "persson-fp solve: error: ... (see --help)"."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {' '.join(message.split())} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="persson-fp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
-    )
+    parser = _Parser(prog="persson-fp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"persson-fp {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="{report,solve,area}")
 
@@ -409,20 +429,20 @@ def build_parser() -> argparse.ArgumentParser:
     so.add_argument(
         "--method", default="fv", help="fv | mol | sines | py-pde | fipy | chapman-kolmogorov | monte-carlo"
     )
-    so.add_argument("--n-p", dest="n_p", type=int, default=None, help="grid cells / points / modes")
-    so.add_argument("--n-steps", dest="n_steps", type=int, default=None, help="steps in zeta (fixed-step schemes)")
+    so.add_argument("--n-p", dest="n_p", type=_count, default=None, help="grid cells / points / modes")
+    so.add_argument("--n-steps", dest="n_steps", type=_count, default=None, help="steps in zeta (fixed-step schemes)")
     so.add_argument("--rtol", type=float, default=None, help="relative tolerance (adaptive methods)")
     so.add_argument("--atol", type=float, default=None, help="absolute tolerance (adaptive methods)")
     so.add_argument("--scheme", default=None, help="fv time scheme (explicit, crank-nicolson, implicit, tr-bdf2)")
     so.add_argument("--output", default=None, help="write P0 at zeta_max: .csv or .json")
     so.add_argument("--plot", default=None, help="write a PNG of P0 against the exact solution")
     so.add_argument("--force", action="store_true", help="replace existing --output / --plot files")
-    so.add_argument("--seed", type=int, default=None, help="seed of the random walks (--method monte-carlo)")
+    so.add_argument("--seed", type=_count, default=None, help="seed of the random walks (--method monte-carlo)")
     so.set_defaults(func=cmd_solve)
 
     ar = sub.add_parser("area", help="A*(p_bar) curves for every fudge model (exact)")
     _add_problem_args(ar)
-    ar.add_argument("--n-loads", type=int, default=1000, help="number of loads (default 1000)")
+    ar.add_argument("--n-loads", type=_count, default=1000, help="number of loads (default 1000)")
     ar.add_argument("--ratio-min", type=float, default=1e-3, help="smallest p_bar/sqrt(V) (default 1e-3)")
     ar.add_argument("--ratio-max", type=float, default=3.0, help="largest p_bar/sqrt(V) (default 3)")
     ar.add_argument("--output", default="persson-fp-output", help="folder for CSV/PNG")
