@@ -52,7 +52,7 @@ def test_area_command_csv_matches_exact(tmp_path):
     "argv, word",
     [
         (["report", "--H", "1.5", "--no-solvers"], "H must lie in"),
-        (["report", "--E-star", "-1", "--no-solvers"], "E_star"),
+        (["report", "--E-star", "-1", "--no-solvers"], "--E-star"),
         (["report", "--p-bar", "0", "--no-solvers"], "p_bar"),
         (["report", "--psd-csv", "/nonexistent.csv", "--no-solvers"], "--psd-csv"),
         (["area", "--ratio-min", "2", "--ratio-max", "1"], "--ratio-min"),
@@ -112,4 +112,4 @@ def test_solve_json_and_bad_method(tmp_path, capsys):
     assert main(["solve", "--method", "fvv"]) == 2
     assert "method must be " in capsys.readouterr().err
     assert main(["solve", "--method", "fv", "--n-p", "3"]) == 2
-    assert "n_p" in capsys.readouterr().err
+    assert "--n-p" in capsys.readouterr().err

@@ -16,11 +16,28 @@ __all__ = [
 ]
 
 
+def _refuse_non_real(value, name: str) -> None:
+    """Raise ``ValueError`` for bools, complex numbers and strings (``float()`` would take them silently)."""
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        raise ValueError(f"{name} must be a real number, got {value!r}")
+    if np.iscomplexobj(value):
+        raise ValueError(f"{name} must be real, got a complex value {value!r}")
+    dtype = getattr(value, "dtype", None)
+    if dtype is not None and dtype.kind in "bOSU":
+        raise ValueError(f"{name} must be a real number (or an array of them), got dtype {dtype}")
+
+
 def as_positive_scalar(value, name: str, *, allow_zero: bool = False) -> float:
-    """Return ``value`` as a finite float > 0 (or >= 0), else raise ``ValueError``."""
+    """Return ``value`` as a finite float > 0 (or >= 0), else raise ``ValueError``.
+
+    Bools, complex numbers, strings, lists and arrays of size != 1 are refused.
+    """
+    _refuse_non_real(value, name)
+    if np.ndim(value) != 0:
+        raise ValueError(f"{name} must be a real number, got {value!r}")
     try:
         x = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{name} must be a real number, got {value!r}") from None
     if not np.isfinite(x):
         raise ValueError(f"{name} must be finite, got {x!r}")
@@ -33,10 +50,19 @@ def as_positive_scalar(value, name: str, *, allow_zero: bool = False) -> float:
 
 
 def as_float_array(value, name: str) -> np.ndarray:
-    """Return ``value`` as a finite float array, else raise ``ValueError``."""
+    """Return ``value`` as a finite float array, else raise ``ValueError`` (complex, bool and string
+    values are refused rather than cast)."""
+    _refuse_non_real(value, name)
+    if isinstance(value, (list, tuple)):
+        try:
+            items = np.asarray(value, dtype=object).ravel()
+        except ValueError:
+            raise ValueError(f"{name} must be a rectangular array of real numbers, got {value!r}") from None
+        if any(isinstance(v, (bool, np.bool_, str, bytes, complex, np.complexfloating)) for v in items):
+            raise ValueError(f"{name} must hold real numbers only, got {value!r}")
     try:
         a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{name} must be numeric, got {value!r}") from None
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be finite everywhere (got NaN or inf)")

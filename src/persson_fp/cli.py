@@ -1,6 +1,9 @@
 """The ``persson-fp`` command: reports, solves and contact-area curves.
 
-It only wires the package together; bad arguments print one line and exit 2.
+It only wires the package together.  Every error -- a bad argument, an unreadable or unwritable
+file, a solver that refuses a problem or breaks an invariant -- prints one line on stderr and exits
+with code 2; Ctrl-C prints "interrupted" and exits with 130.  Files are written under a temporary
+name and renamed when complete, so an interrupted run leaves no half-written file.
 """
 
 from __future__ import annotations
@@ -9,6 +12,7 @@ import argparse
 import csv
 import json
 import os
+import re
 import sys
 import time
 
@@ -16,8 +20,10 @@ import numpy as np
 
 from . import __version__
 from . import fudge as _fudge
+from ._cli_io import CLIError, _atomic_open, _check_new_file, _make_parent, _note_replaced, _save_figure
 from .exact import elastic_energy, exact
 from .problem import ContactProblem
+from .solution import SolverError
 from .spectrum import SelfAffinePSD, TabulatedPSD
 
 FUDGES = ["none", "YP08", "WM17", "Xu24"]
@@ -53,8 +59,11 @@ Fudge factors: Yang & Persson 2008 (YP08), Wang & Muser 2017 (WM17), Xu et al. 2
 """
 
 
-class CLIError(Exception):
-    """A user error: printed as one line, exit code 2."""
+MAX_LOADS = 1_000_000
+"""Largest ``area --n-loads`` (the exact curves take ~100 bytes per load and model)."""
+
+SURFACE_DEFAULTS = {"H": 0.8, "q_l": 1.0, "zeta_max": 128.0}
+"""Defaults of the self-affine surface options (None in argparse, so that a given one can be told apart)."""
 
 
 def _progress(i, n, label, stream=sys.stderr):
@@ -71,10 +80,10 @@ def _progress(i, n, label, stream=sys.stderr):
 
 def _add_problem_args(p: argparse.ArgumentParser):
     g = p.add_argument_group("surface (self-affine PSD, eq. E:PSD) -- or --psd-csv")
-    g.add_argument("--H", type=float, default=0.8, help="Hurst exponent in [0, 1] (default 0.8)")
-    g.add_argument("--q-l", type=float, default=1.0, help="lower cut-off wavenumber q_l, 1/length (default 1)")
+    g.add_argument("--H", type=float, default=None, help="Hurst exponent in [0, 1] (default 0.8)")
+    g.add_argument("--q-l", type=float, default=None, help="lower cut-off wavenumber q_l, 1/length (default 1)")
     g.add_argument("--q-r", type=float, default=None, help="roll-off wavenumber q_r (default 2 q_l)")
-    g.add_argument("--zeta-max", type=float, default=128.0, help="magnification q_s/q_l (default 128)")
+    g.add_argument("--zeta-max", type=float, default=None, help="magnification q_s/q_l (default 128)")
     amp = g.add_mutually_exclusive_group()
     amp.add_argument("--rms-slope", type=float, default=None, help="rms slope over the band (default 0.1)")
     amp.add_argument("--rms-height", type=float, default=None, help="rms height over the band, length")
@@ -91,22 +100,40 @@ def _add_problem_args(p: argparse.ArgumentParser):
     m.add_argument("--gamma", type=float, default=None, help="gamma of the fudge model (default: the model's)")
 
 
+_SURFACE_OPTIONS = ("H", "q_l", "q_r", "zeta_max", "rms_slope", "rms_height", "C0")
+
+
+def _check_combination(args):
+    """Options that would be silently ignored are errors."""
+    if args.psd_csv:
+        given = [o for o in _SURFACE_OPTIONS if getattr(args, o) is not None]
+        if given:
+            flags = ", ".join("--" + o.replace("_", "-") for o in given)
+            raise CLIError(f"{flags}: not used with --psd-csv (the measured spectrum fixes the surface)")
+    if args.gamma is not None and args.fudge == "none" and args.command == "solve":
+        raise CLIError("--gamma: not used with --fudge none (choose YP08, WM17 or Xu24)")
+
+
 def _problem(args, fudge=None) -> ContactProblem:
     if args.psd_csv:
-        if not os.path.exists(args.psd_csv):
-            raise CLIError(f"--psd-csv: no such file {args.psd_csv!r}")
+        if not os.path.isfile(args.psd_csv):
+            what = "is a directory" if os.path.isdir(args.psd_csv) else "no such file"
+            raise CLIError(f"--psd-csv: {what}: {args.psd_csv!r}")
         psd = TabulatedPSD.from_csv(args.psd_csv)
     else:
-        q_l = args.q_l
+        H = SURFACE_DEFAULTS["H"] if args.H is None else args.H
+        q_l = SURFACE_DEFAULTS["q_l"] if args.q_l is None else args.q_l
+        zeta_max = SURFACE_DEFAULTS["zeta_max"] if args.zeta_max is None else args.zeta_max
         q_r = 2.0 * q_l if args.q_r is None else args.q_r
-        q_s = args.zeta_max * q_l
+        with np.errstate(over="ignore"):
+            q_s = zeta_max * q_l
         if args.C0 is not None:
-            psd = SelfAffinePSD(args.C0, args.H, q_l, q_r, q_s)
+            psd = SelfAffinePSD(args.C0, H, q_l, q_r, q_s)
         elif args.rms_height is not None:
-            psd = SelfAffinePSD.from_rms_height(args.rms_height, args.H, q_l, q_r, q_s)
+            psd = SelfAffinePSD.from_rms_height(args.rms_height, H, q_l, q_r, q_s)
         else:
             slope = 0.1 if args.rms_slope is None else args.rms_slope
-            psd = SelfAffinePSD.from_rms_slope(slope, args.H, q_l, q_r, q_s)
+            psd = SelfAffinePSD.from_rms_slope(slope, H, q_l, q_r, q_s)
     name = args.fudge if fudge is None else fudge
     f = None
     if name != "none":
@@ -118,11 +145,13 @@ def _problem(args, fudge=None) -> ContactProblem:
         ratio = np.array([0.5] if args.p_bar_ratio is None else args.p_bar_ratio)
         if np.any(~np.isfinite(ratio)) or np.any(ratio <= 0):
             raise CLIError("--p-bar-ratio must be > 0 and finite")
-        p_bar = ratio * np.sqrt(psd.V(E_star=args.E_star))
+        p_bar = ratio * np.sqrt(ContactProblem(psd, args.E_star, 1.0).V_max)  # (checks V's range first)
     return ContactProblem(psd, args.E_star, p_bar[0] if p_bar.size == 1 else p_bar, f)
 
 
 def _outdir(path) -> str:
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise CLIError(f"--output: {path} exists and is not a folder")
     os.makedirs(path, exist_ok=True)
     return path
 
@@ -158,9 +187,9 @@ def cmd_report(args) -> int:
 
     zetas = [1.5, 4.0, 16.0, base.zeta_max]
     zetas = sorted({z for z in zetas if z <= base.zeta_max})
+    _note_replaced(out, ["pdf_exact.png", "solvers.csv", "error_vs_time.png"])
     fig = plotting.plot_exact_pdfs(base, zetas)
-    f1 = os.path.join(out, "pdf_exact.png")
-    fig.savefig(f1, dpi=120)
+    _save_figure(fig, os.path.join(out, "pdf_exact.png"), dpi=120)
 
     methods = [m for m in available_methods() if m not in ("py-pde", "fipy") or args.all_methods]
     rows = []
@@ -184,16 +213,14 @@ def cmd_report(args) -> int:
                 f"{r['method']:<20} {sol.p.size:6d} {str(sol.info.get('steps', '-')):>8} {r['time'] * 1e3:10.2f} "
                 f"{r['L1']:10.2e} {r['area_error']:10.2e} {r['load_drift']:10.2e}"
             )
-        with open(os.path.join(out, "solvers.csv"), "w", newline="") as fh:
+        with _atomic_open(os.path.join(out, "solvers.csv"), "w", newline="") as fh:
             w = csv.DictWriter(fh, fieldnames=list(rows[0]) if rows else ["method"])
             w.writeheader()
             w.writerows(rows)
         for sol in sols:
-            fig = sol.plot()
-            fig.savefig(os.path.join(out, f"pdf_{sol.method}.png"), dpi=110)
+            _save_figure(sol.plot(), os.path.join(out, f"pdf_{sol.method}.png"), dpi=110)
         if rows:
-            fig = plotting.plot_error_vs_time(rows)
-            fig.savefig(os.path.join(out, "error_vs_time.png"), dpi=110)
+            _save_figure(plotting.plot_error_vs_time(rows), os.path.join(out, "error_vs_time.png"), dpi=110)
     print(f"\nfigures and tables written to {os.path.abspath(out)}/")
     return 0
 
@@ -202,9 +229,13 @@ def cmd_report(args) -> int:
 def cmd_solve(args) -> int:
     from .solvers import solve
 
+    _check_new_file(args.output, args.force, "--output")
+    _check_new_file(args.plot, args.force, "--plot")
+    if args.seed is not None and args.method != "monte-carlo":
+        raise CLIError("--seed: only used with --method monte-carlo")
     pr = _problem(args)
     opts = {}
-    for key in ("n_p", "n_steps", "rtol", "atol", "scheme"):
+    for key in ("n_p", "n_steps", "rtol", "atol", "scheme", "seed"):
         v = getattr(args, key)
         if v is not None:
             opts[key] = v
@@ -227,8 +258,7 @@ def cmd_solve(args) -> int:
         )
     if args.output:
         path = args.output
-        d = os.path.dirname(os.path.abspath(path))
-        os.makedirs(d, exist_ok=True)
+        _make_parent(path, "--output")
         if path.endswith(".json"):
             data = {
                 "method": sol.method,
@@ -239,18 +269,18 @@ def cmd_solve(args) -> int:
                 "contact_area": sol.contact_area_all[-1].tolist(),
                 "wall_time": sol.wall_time,
             }
-            with open(path, "w") as fh:
+            with _atomic_open(path, "w") as fh:
                 json.dump(data, fh)
         else:
-            with open(path, "w", newline="") as fh:
+            with _atomic_open(path, "w", newline="") as fh:
                 w = csv.writer(fh)
                 w.writerow(["p"] + [f"P0(p_bar={pb:.6g})" for pb in pr.p_bar])
                 for i, p in enumerate(sol.p):
                     w.writerow([f"{p:.12g}"] + [f"{v:.12g}" for v in sol.P0_all[-1, :, i]])
         print(f"P0 at zeta_max written to {path}")
     if args.plot:
-        fig = sol.plot()
-        fig.savefig(args.plot, dpi=120)
+        _make_parent(args.plot, "--plot")
+        _save_figure(sol.plot(), args.plot, dpi=120)
         print(f"figure written to {args.plot}")
     return 0
 
@@ -259,11 +289,18 @@ def cmd_solve(args) -> int:
 def cmd_area(args) -> int:
     from . import plotting
 
-    out = _outdir(args.output)
     if not (0 < args.ratio_min < args.ratio_max) or not np.isfinite(args.ratio_max):
         raise CLIError("--ratio-min and --ratio-max must satisfy 0 < min < max")
-    if args.n_loads < 2:
-        raise CLIError("--n-loads must be >= 2")
+    if not 2 <= args.n_loads <= MAX_LOADS:
+        raise CLIError(f"--n-loads must lie in [2, {MAX_LOADS}], got {args.n_loads}")
+    for flag, value in (("--p-bar", args.p_bar), ("--p-bar-ratio", args.p_bar_ratio), ("--gamma", args.gamma)):
+        if value is not None:
+            raise CLIError(
+                f"{flag}: not used by 'area' (loads from --ratio-min/--ratio-max, every model at its default)"
+            )
+    if args.fudge != "none":
+        raise CLIError("--fudge: not used by 'area' (it computes every fudge model)")
+    out = _outdir(args.output)
     base = _problem(args)
     ratio = np.geomspace(args.ratio_min, args.ratio_max, args.n_loads)
     p_bar = ratio * np.sqrt(base.V())
@@ -276,13 +313,13 @@ def cmd_area(args) -> int:
     _progress(len(FUDGES), len(FUDGES), "contact-area curves")
     wall = time.perf_counter() - t0
     path = os.path.join(out, "contact_area.csv")
-    with open(path, "w", newline="") as fh:
+    _note_replaced(out, ["contact_area.csv", "contact_area.png"])
+    with _atomic_open(path, "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["p_bar", "p_bar_over_sqrtV"] + [f"A_{n}" for n in FUDGES])
         for j in range(ratio.size):
             w.writerow([f"{p_bar[j]:.12g}", f"{ratio[j]:.12g}"] + [f"{curves[n][j]:.15g}" for n in FUDGES])
-    fig = plotting.plot_area_curve(ratio, curves)
-    fig.savefig(os.path.join(out, "contact_area.png"), dpi=120)
+    _save_figure(plotting.plot_area_curve(ratio, curves), os.path.join(out, "contact_area.png"), dpi=120)
     print(
         f"{ratio.size} loads x {len(FUDGES)} models in {wall * 1e3:.1f} ms "
         f"({ratio.size * len(FUDGES) / wall:.3g} loads/s)"
@@ -291,10 +328,30 @@ def cmd_area(args) -> int:
     return 0
 
 
+def _count(text: str) -> int:
+    """An integer argument; "1e6" is read as 1000000 (an integral number in any float notation)."""
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+    if not (np.isfinite(x) and x == np.floor(x) and abs(x) < 2**63):
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}")
+    return int(x)
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with its errors on one line (no usage block): "persson-fp solve: error: ... (see --help)"."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {' '.join(message.split())} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="persson-fp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
-    )
+    parser = _Parser(prog="persson-fp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"persson-fp {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="{report,solve,area,surface,sweep}")
 
@@ -310,18 +367,20 @@ def build_parser() -> argparse.ArgumentParser:
     so.add_argument(
         "--method", default="fv", help="fv | mol | sines | py-pde | fipy | chapman-kolmogorov | monte-carlo"
     )
-    so.add_argument("--n-p", dest="n_p", type=int, default=None, help="grid cells / points / modes")
-    so.add_argument("--n-steps", dest="n_steps", type=int, default=None, help="steps in zeta (fixed-step schemes)")
+    so.add_argument("--n-p", dest="n_p", type=_count, default=None, help="grid cells / points / modes")
+    so.add_argument("--n-steps", dest="n_steps", type=_count, default=None, help="steps in zeta (fixed-step schemes)")
     so.add_argument("--rtol", type=float, default=None, help="relative tolerance (adaptive methods)")
     so.add_argument("--atol", type=float, default=None, help="absolute tolerance (adaptive methods)")
     so.add_argument("--scheme", default=None, help="fv time scheme (explicit, crank-nicolson, implicit, tr-bdf2)")
     so.add_argument("--output", default=None, help="write P0 at zeta_max: .csv or .json")
     so.add_argument("--plot", default=None, help="write a PNG of P0 against the exact solution")
+    so.add_argument("--force", action="store_true", help="replace existing --output / --plot files")
+    so.add_argument("--seed", type=_count, default=None, help="seed of the random walks (--method monte-carlo)")
     so.set_defaults(func=cmd_solve)
 
     ar = sub.add_parser("area", help="A*(p_bar) curves for every fudge model (exact)")
     _add_problem_args(ar)
-    ar.add_argument("--n-loads", type=int, default=1000, help="number of loads (default 1000)")
+    ar.add_argument("--n-loads", type=_count, default=1000, help="number of loads (default 1000)")
     ar.add_argument("--ratio-min", type=float, default=1e-3, help="smallest p_bar/sqrt(V) (default 1e-3)")
     ar.add_argument("--ratio-max", type=float, default=3.0, help="largest p_bar/sqrt(V) (default 3)")
     ar.add_argument("--output", default="persson-fp-output", help="folder for CSV/PNG")
@@ -344,14 +403,53 @@ def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or argv[0].startswith("-") and argv[0] not in ("-h", "--help", "--version"):
         argv = ["report", *argv]
-    args = parser.parse_args(argv)
-    if args.command is None:
-        args = parser.parse_args(["report"])
     try:
+        args = parser.parse_args(argv)
+        if args.command is None:
+            args = parser.parse_args(["report"])
+        _check_combination(args)
         return args.func(args)
-    except (CLIError, ValueError, TypeError, ImportError, NotImplementedError) as err:
-        print(f"persson-fp {args.command}: error: {err}", file=sys.stderr)
+    except KeyboardInterrupt:
+        print("persson-fp: interrupted", file=sys.stderr)
+        return 130
+    except (
+        CLIError,
+        ValueError,
+        TypeError,
+        ImportError,
+        NotImplementedError,
+        SolverError,
+        OSError,
+        MemoryError,
+    ) as err:
+        print(f"persson-fp {argv[0] if argv else 'report'}: error: {_one_line(err)}", file=sys.stderr)
         return 2
+
+
+_USER_ERRORS = (CLIError, ValueError, TypeError, ImportError, NotImplementedError, SolverError, OSError, MemoryError)
+"""Errors reported as one line (a solver's refusal, a breached invariant, a file that cannot be read or written)."""
+
+
+def _one_line(err) -> str:
+    """The error as one line (an ``OSError`` as "reason: file")."""
+    if isinstance(err, OSError) and err.strerror:
+        text = f"{err.strerror}: {err.filename}" if err.filename else err.strerror
+    elif isinstance(err, MemoryError):
+        text = "out of memory (use a coarser grid or fewer loads)"
+    else:
+        text = str(err) or type(err).__name__
+        for name, flag in _FLAGS.items():  # the solvers' option names, as the command spells them
+            text = re.sub(rf"(?<![-\w]){name}(?!\w)", flag, text)
+        if any(re.search(rf"(?<![-\w]){name}(?!\w)", text) for name in _API_ONLY):
+            text += " (k_domain, zeta_out and n_walkers are options of the Python API, persson_fp.solve)"
+    return " ".join(text.split())
+
+
+_FLAGS = {"n_p": "--n-p", "n_steps": "--n-steps", "E_star": "--E-star", "q_l": "--q-l", "q_r": "--q-r"}
+"""Option names in library messages -> the command-line flag that sets them."""
+
+_API_ONLY = ("k_domain", "zeta_out", "n_walkers")
+"""Options named in library messages that the command line does not offer."""
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -129,9 +129,15 @@ class FudgeFactor:
         """
         try:
             with np.errstate(all="ignore"):
-                s = np.asarray(self.S(_CHECK_GRID), dtype=float)
-        except (TypeError, ValueError) as err:
-            raise ValueError(f"fudge factor {self.name}: S(A*) must return numbers, got an error: {err}") from None
+                raw = self.S(_CHECK_GRID)
+                if np.iscomplexobj(raw):
+                    raise TypeError("it returned complex values")
+                s = np.asarray(raw, dtype=float)
+        except Exception as err:  # a user callable may raise anything: report it as bad input
+            raise ValueError(
+                f"fudge factor {self.name}: S(A*) must return numbers (real) for A* in [0, 1], "
+                f"but {type(err).__name__}: {err}"
+            ) from None
         if s.shape != _CHECK_GRID.shape:
             s = np.broadcast_to(s, _CHECK_GRID.shape)
         bad = ~np.isfinite(s) | (s <= 0) | (s > S_MAX)
@@ -163,6 +169,8 @@ class NoFudge(FudgeFactor):
 
 
 def _check_gamma(gamma, name, lo, hi):
+    if isinstance(gamma, (bool, np.bool_, str, bytes)) or np.iscomplexobj(gamma) or np.ndim(gamma) != 0:
+        raise ValueError(f"gamma of {name} must be a number in ({lo}, {hi}], got {gamma!r}")
     try:
         g = float(gamma)
     except (TypeError, ValueError):
@@ -342,18 +350,33 @@ class CallableFudge(FudgeFactor):
     def S(self, A: ArrayLike) -> np.ndarray:
         A = np.asarray(A, dtype=float)
         try:
-            out = np.asarray(self.fn(A), dtype=float)
-            if out.shape != A.shape:
-                out = np.broadcast_to(out, A.shape).copy()
+            raw = self.fn(A)
+            vectorised = not np.iscomplexobj(raw)
         except Exception:
-            out = np.vectorize(lambda a: float(self.fn(float(a))), otypes=[float])(A)
-        return out
+            vectorised = False
+        if vectorised:
+            try:
+                out = np.asarray(raw, dtype=float)
+                if out.shape != A.shape:
+                    out = np.broadcast_to(out, A.shape).copy()
+                return out
+            except (TypeError, ValueError):
+                pass
+        return np.vectorize(lambda a: _real(self.fn(float(a))), otypes=[float])(A)
 
     def __hash__(self):
         return id(self.fn)
 
     def __eq__(self, other):
         return isinstance(other, CallableFudge) and other.fn is self.fn
+
+
+def _real(x) -> float:
+    """A scalar S value as a float; complex values raise (``float`` of a numpy complex would drop its imaginary
+    part)."""
+    if np.iscomplexobj(x):
+        raise TypeError(f"S(A*) returned a complex value {x!r}")
+    return float(x)
 
 
 MODELS = {"none": NoFudge, "YP08": YangPersson, "WM17": WangMuser, "Xu24": Xu24}

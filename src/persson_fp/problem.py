@@ -87,7 +87,7 @@ class ContactProblem:
         if pb.size == 0:
             raise ValueError("p_bar must hold at least one load")
         if np.any(pb <= 0):
-            raise ValueError(f"p_bar must be > 0 (every load), got {pb[pb <= 0].ravel()[0]!r}")
+            raise ValueError(f"p_bar must be > 0 (every load), got {float(pb[pb <= 0].ravel()[0])!r}")
         if np.any(pb > 1e150):
             raise ValueError(
                 f"p_bar must be <= 1e150 (p_bar^2 must be representable; rescale units), got {float(pb.max())!r}"
@@ -100,7 +100,13 @@ class ContactProblem:
         if self.hardness is not None:
             self.hardness.check(self.psd.zeta_max, float(np.max(self.p_bar)))
         self._strip_ev = None  # StripEffectiveVariance, on first use (constant hardness with a fudge factor)
-        self._V_max = float(self.psd.V(None, self.E_star))
+        with np.errstate(over="ignore", under="ignore"):
+            self._V_max = float(self.psd.V(None, self.E_star))
+        if not (np.isfinite(self._V_max) and self._V_max > 0):  # V = E*^2 <|grad h|^2> / 4 out of range
+            raise ValueError(
+                f"E_star = {self.E_star!r} and the spectrum give V(zeta_max) = {self._V_max!r}, outside floating-point "
+                "range (V = E_star^2 <|grad h|^2> / 4, eq:VV_relation); rescale the pressure or length unit"
+            )
         self._tau_max = None  # (n_loads,), on first use
         self._frozen = True
 
@@ -111,6 +117,8 @@ class ContactProblem:
         rms slope 0.1, E* = 1 and p_bar = ``p_bar_ratio`` * sqrt(V(zeta_max)); ``hardness`` as in the class."""
         psd = SelfAffinePSD.from_rms_slope(0.1, H=H, q_l=1.0, q_r=2.0, q_s=zeta_max)
         ratio = as_float_array(p_bar_ratio, "p_bar_ratio")
+        if ratio.ndim > 1 or ratio.size == 0 or np.any(ratio <= 0):
+            raise ValueError(f"p_bar_ratio must be a number > 0 or a non-empty 1-D array of them, got {p_bar_ratio!r}")
         return cls(psd, E_star=1.0, p_bar=ratio * np.sqrt(psd.V(E_star=1.0)), fudge=fudge, hardness=hardness)
 
     def with_loads(self, p_bar) -> ContactProblem:

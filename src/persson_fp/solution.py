@@ -4,8 +4,10 @@ A :class:`Solution` holds P0 at the output stations on the method's grid, the
 derived integrals (contact area ``eq:Area``, load ``eq:Load_equilibrium``,
 variance) and what the solver did (``info``: grid, steps, rhs calls, wall
 time, options).  The invariants -- P0 >= 0, A* non-increasing, load = p_bar --
-are checked once, here, and recorded in ``info["checks"]``; a non-finite field
-raises instead of being returned.  :meth:`Solution.compare` measures the error
+are checked once, here (:func:`check_invariants`), against tolerances tied to the
+method's accuracy, and recorded in ``info["checks"]``; a breach raises
+:class:`SolverError` (a warning with ``check=False``) and a non-finite field
+raises :class:`InstabilityError` instead of being returned.  :meth:`Solution.compare` measures the error
 actually made against :func:`persson_fp.exact`.
 """
 
@@ -19,7 +21,7 @@ import numpy as np
 from .exact import exact
 from .problem import ContactProblem
 
-__all__ = ["Solution", "Comparison", "SolverError", "InstabilityError"]
+__all__ = ["Solution", "Comparison", "SolverError", "InstabilityError", "check_invariants", "DEFAULT_TOLERANCES"]
 
 
 def _station_axis(a):
@@ -29,11 +31,151 @@ def _station_axis(a):
 
 
 class SolverError(RuntimeError):
-    """A solver could not produce a trustworthy result."""
+    """A solver could not produce a trustworthy result: it failed, or its result breaks an invariant
+    (:func:`check_invariants`); the message names the invariant and the remedy."""
 
 
 class InstabilityError(SolverError):
     """The discrete evolution went unstable (NaN, negative or growing mass, blow-up)."""
+
+
+DEFAULT_TOLERANCES = {"load": 1e-2, "area": 1e-6, "negative": 1e-2}
+"""Invariant tolerances of :func:`check_invariants` unless a method states its own
+(:meth:`persson_fp.solvers.base.Solver.invariant_tolerances`):
+
+- ``load``: relative load drift |int p P0 dp - p_bar| / p_bar (``eq:Load_equilibrium``), a float or an
+  array broadcasting to ``(n_zeta, n_loads)``; 1 % by default: a coarse grid may miss it by less (its
+  error is measured by :meth:`Solution.compare`), a result beyond it is not an answer;
+- ``area``: A* may leave [0, 1] by this much, and grow between stations by this much relative to A*
+  (contact is only lost, ``eq:Area``);
+- ``negative``: min P0 >= -negative x max P0 at every station and load (smaller undershoots, e.g. the
+  Gibbs ripple of a short sine series, are recorded and warned about only).
+"""
+
+_REMEDY = (
+    "refine the method (n_p, n_steps, rtol/tol), keep k_domain at its default, use method='sines' "
+    "or the closed form pf.exact, or pass check=False to inspect the result anyway"
+)
+
+
+def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
+    """Check the invariants every solution of Persson's diffusion problem keeps.
+
+    1. finite A* and load;
+    2. A* in [0, 1] and non-increasing in zeta (``eq:Area``: contact is only lost);
+    3. load balance int p P0 dp = p_bar (``eq:Load_equilibrium``; the absorbing wall at p = 0 keeps the
+       first moment);
+    4. P0 >= 0 up to the method's undershoot (fourth-order differences and truncated sine series are
+       not positivity preserving).
+
+    Parameters
+    ----------
+    sol : Solution
+    tolerances : dict, optional
+        Keys of :data:`DEFAULT_TOLERANCES` (missing keys take the default).
+    raise_on_breach : bool
+        True: a breached invariant raises :class:`SolverError` naming it and the remedy; False: a
+        ``RuntimeWarning`` with the same text (and ``info["warnings"]``).
+
+    Returns
+    -------
+    dict
+        ``min_P0``, ``negative_P0`` (any undershoot), ``area_increase`` (largest, relative to A*),
+        ``area_monotone``, ``max_load_drift`` (relative), ``breaches`` (names of the broken invariants).
+    """
+    tol = {**DEFAULT_TOLERANCES, **(tolerances or {})}
+    p_bar = sol.problem.p_bar
+    A = sol.contact_area_all  # (a model with more contact states checks each area and their sum here)
+    P = sol.P0_all
+    load = sol.load_all  # the supported load; a model with a yield wall adds its plastic share here
+    checks = {}
+    breaches = []  # (invariant, message)
+    where = _where(sol)
+
+    if not (np.all(np.isfinite(A)) and np.all(np.isfinite(load))):
+        breaches.append(("finite", "A* or the load is NaN or inf"))
+        A = np.nan_to_num(A, nan=np.inf)
+
+    # 2. A* in [0, 1], non-increasing (relative to A*, so that tiny loads are checked as closely)
+    checks["area_range"] = (float(np.min(A)), float(np.max(A)))
+    bad = (A < -tol["area"]) | (A > 1.0 + tol["area"])
+    if np.any(bad):
+        i, j = np.argwhere(bad)[0]
+        breaches.append(("area_range", f"A* = {A[i, j]:.6g} outside [0, 1] at {where(i, j)}"))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rel_inc = np.diff(A, axis=0) / np.maximum(np.abs(A[:-1]), np.finfo(float).tiny)
+    rel_inc = np.nan_to_num(rel_inc, nan=np.inf)
+    checks["area_increase"] = float(max(np.max(rel_inc, initial=0.0), 0.0))
+    checks["area_monotone"] = checks["area_increase"] <= tol["area"]
+    if not checks["area_monotone"]:
+        i, j = np.unravel_index(np.argmax(rel_inc), rel_inc.shape)
+        breaches.append(
+            (
+                "area_monotone",
+                f"A* grows by {rel_inc[i, j]:.3e} (relative, > {tol['area']:.1e}) up to {where(i + 1, j)} "
+                "(contact can only be lost, eq:Area)",
+            )
+        )
+
+    # 3. load balance
+    with np.errstate(invalid="ignore", over="ignore"):
+        drift = np.abs(load - p_bar) / p_bar
+    drift = np.nan_to_num(drift, nan=np.inf)
+    tol_load = np.broadcast_to(np.asarray(tol["load"], dtype=float), drift.shape)
+    checks["max_load_drift"] = float(np.max(drift))
+    # general coefficients: a drift B1 moves the load, so the balance is no law of the equation there
+    over = (drift > tol_load) & (not getattr(sol.problem, "general", False))
+    if np.any(over):
+        i, j = np.unravel_index(np.argmax(np.where(over, drift / tol_load, -np.inf)), drift.shape)
+        breaches.append(
+            (
+                "load_balance",
+                f"int p P0 dp deviates from p_bar by {drift[i, j]:.3e} (relative, > {tol_load[i, j]:.1e}) at "
+                f"{where(i, j)} (eq:Load_equilibrium)",
+            )
+        )
+
+    # 4. P0 >= 0 (small undershoots are reported, large ones are breaches)
+    peak = np.max(np.abs(P), axis=-1) if P.shape[-1] else np.zeros(A.shape)
+    low = np.min(P, axis=-1) if P.shape[-1] else np.zeros(A.shape)
+    checks["min_P0"] = float(np.min(low)) if low.size else 0.0
+    checks["negative_P0"] = bool(np.any(low < -1e-10 * np.max(peak, initial=0.0)))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rel_neg = np.where(peak > 0, -low / np.where(peak > 0, peak, 1.0), 0.0)
+    if np.any(rel_neg > tol["negative"]):
+        i, j = np.unravel_index(np.argmax(rel_neg), rel_neg.shape)
+        breaches.append(
+            (
+                "positivity",
+                f"P0 dips to {low[i, j]:.3e} = -{rel_neg[i, j]:.2e} x its peak (> {tol['negative']:.1e}) at "
+                f"{where(i, j)} (oscillations: refine, or use an L-stable scheme)",
+            )
+        )
+    elif checks["negative_P0"]:
+        msg = f"P0 has negative values down to {checks['min_P0']:.3e} (oscillations: refine or use an L-stable scheme)"
+        sol.info.setdefault("warnings", []).append(msg)
+        warnings.warn(f"{sol.method}: {msg}", RuntimeWarning, stacklevel=6)
+
+    checks["breaches"] = [name for name, _ in breaches]
+    if breaches:
+        text = f"{sol.method}: invariant(s) broken: " + "; ".join(f"{n}: {m}" for n, m in breaches) + f". {_REMEDY}"
+        if raise_on_breach:
+            raise SolverError(text)
+        sol.info.setdefault("warnings", []).append(text)
+        warnings.warn(text, RuntimeWarning, stacklevel=6)
+    return checks
+
+
+def _where(sol):
+    """A formatter of (station, load) indices for messages."""
+
+    def fmt(i, j):
+        s = f"zeta = {sol.zeta[i]:.6g}"
+        if sol.problem.n_loads > 1 or not sol.problem.scalar_load:
+            s += f", p_bar = {sol.problem.p_bar[j]:.6g}"
+        return s
+
+    return fmt
 
 
 @dataclass(frozen=True)
@@ -47,6 +189,7 @@ class Comparison:
     L1 : int ``|P0 - P0_exact|`` dp (dimensionless)
     Linf : max ``|P0 - P0_exact|`` (1/pressure)
     area_error : ``|A*_num - A*_exact|``
+    area_error_rel : ``|A*_num - A*_exact| / A*_exact`` (shows the failures at tiny loads, where A* ~ p_bar)
     load_drift : ``|int p P0 dp - p_bar|`` / p_bar
     mass_balance : ``|A*(integral) - A*(boundary flux)|`` where the method tracks the flux, else NaN
     reference : "cell averages" or "point values" -- what the numerical P0 was compared with
@@ -66,6 +209,8 @@ class Comparison:
     elastic_area_error: np.ndarray | None = None
     plastic_area_error: np.ndarray | None = None
     noncontact_area_error: np.ndarray | None = None
+    area_error_rel: np.ndarray | None = None
+    stderr_load: np.ndarray | None = None
 
     @property
     def max_L1(self) -> float:
@@ -74,6 +219,11 @@ class Comparison:
     @property
     def max_area_error(self) -> float:
         return float(np.max(self.area_error))
+
+    @property
+    def max_area_error_rel(self) -> float:
+        """Largest |dA*| / A*_exact over stations and loads."""
+        return float(np.max(self.area_error_rel))
 
     @property
     def area_z_score(self) -> np.ndarray | None:
@@ -93,6 +243,7 @@ class Comparison:
             "L1": float(np.max(self.L1[-1])),
             "Linf": float(np.max(self.Linf[-1])),
             "area_error": float(np.max(self.area_error[-1])),
+            "area_error_rel": float(np.max(self.area_error_rel[-1])),
             "load_drift": float(np.max(self.load_drift[-1])),
         }
         if self.plastic_area_error is not None:
@@ -102,11 +253,12 @@ class Comparison:
         return out
 
     def __str__(self):
-        rows = [f"{'zeta':>10} {'L1':>10} {'Linf':>10} {'|dA*|':>10} {'load drift':>10}"]
+        rows = [f"{'zeta':>10} {'L1':>10} {'Linf':>10} {'|dA*|':>10} {'|dA*|/A*':>10} {'load drift':>10}"]
         for i, z in enumerate(self.zeta):
             rows.append(
                 f"{z:10.4g} {np.max(self.L1[i]):10.3e} {np.max(self.Linf[i]):10.3e} "
-                f"{np.max(self.area_error[i]):10.3e} {np.max(self.load_drift[i]):10.3e}"
+                f"{np.max(self.area_error[i]):10.3e} {np.max(self.area_error_rel[i]):10.3e} "
+                f"{np.max(self.load_drift[i]):10.3e}"
             )
         tail = f"\n(worst over {self.p_bar.size} load(s); reference: {self.reference})"
         if self.plastic_area_error is not None:
@@ -156,6 +308,8 @@ class Solution:
     stderr_area_all: np.ndarray | None = None
     plastic_area_all: np.ndarray | None = None
     sigma_Y: np.ndarray | None = None
+    load_estimate_all: np.ndarray | None = None
+    stderr_load_all: np.ndarray | None = None
 
     # -- construction -------------------------------------------------------------------
     @classmethod
@@ -175,12 +329,20 @@ class Solution:
         stderr_area=None,
         check=True,
         plastic_area=None,
+        tolerances=None,
+        load=None,
+        stderr_load=None,
     ):
         """Assemble a Solution, computing the integrals and checking the invariants.
 
         ``contact_area`` is the method's int P0 dp (the elastic area); with a hardness wall the method
         also hands over ``plastic_area`` (A_pl, the mass absorbed at sigma_Y) and the Solution's
         ``contact_area`` is their sum.  ``p`` and ``weights`` may have a leading station axis (moving wall).
+
+        ``check=True`` raises :class:`SolverError` on a breached invariant, ``check=False`` only
+        warns (:func:`check_invariants`; ``tolerances`` as there).  ``load`` (with ``stderr_load``)
+        is the method's own estimate of int p P0 dp where the grid quadrature is not the best one
+        (Monte Carlo: the mean over the walkers instead of the histogram).
         """
         zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
         P0 = np.asarray(P0, dtype=float).reshape(zeta.size, problem.n_loads, -1)
@@ -218,37 +380,16 @@ class Solution:
             stderr_area_all=None if stderr_area is None else np.asarray(stderr_area, float).reshape(zeta.size, -1),
             plastic_area_all=plastic_area,
             sigma_Y=sigma_Y,
+            load_estimate_all=None if load is None else np.asarray(load, float).reshape(zeta.size, problem.n_loads),
+            stderr_load_all=None if stderr_load is None else np.asarray(stderr_load, float).reshape(zeta.size, -1),
         )
-        if check:
-            sol._check()
+        sol._check(tolerances, raise_on_breach=bool(check))
         return sol
 
-    def _check(self):
-        """Record (and warn about) violated invariants: P0 >= 0, A* non-increasing, load."""
-        checks = {}
-        scale = np.max(np.abs(self.P0_all)) if self.P0_all.size else 1.0
-        neg = float(-min(np.min(self.P0_all), 0.0))
-        checks["min_P0"] = float(np.min(self.P0_all))
-        checks["negative_P0"] = neg > 1e-10 * scale
-        dA = np.diff(self.contact_area_all, axis=0)
-        checks["area_increase"] = float(max(np.max(dA, initial=0.0), 0.0))
-        checks["area_monotone"] = checks["area_increase"] <= 1e-9
-        load = self.load_all
-        checks["max_load_drift"] = float(np.max(np.abs(load - self.problem.p_bar) / self.problem.p_bar))
+    def _check(self, tolerances=None, raise_on_breach=True):
+        """Check the invariants (:func:`check_invariants`); record them in ``info["checks"]``."""
+        checks = check_invariants(self, tolerances, raise_on_breach=raise_on_breach)
         self.info["checks"] = checks
-        msgs = []
-        if checks["negative_P0"]:
-            msgs.append(
-                f"P0 has negative values down to {checks['min_P0']:.3e} "
-                "(oscillations: refine or use an L-stable scheme)"
-            )
-        if not checks["area_monotone"]:
-            msgs.append(
-                f"A* increases by up to {checks['area_increase']:.3e} between stations (contact can only be lost)"
-            )
-        if msgs:
-            self.info.setdefault("warnings", []).extend(msgs)
-            warnings.warn(f"{self.method}: " + "; ".join(msgs), RuntimeWarning, stacklevel=3)
 
     # -- public views (load axis dropped for a scalar load) -------------------------------
     def _squeeze(self, a):
@@ -316,7 +457,9 @@ class Solution:
 
     @property
     def load_all(self) -> np.ndarray:
-        load = self._moment(1)
+        """F_el + F_pl, shape ``(n_zeta, n_loads)``: int p P0 dp (the method's own estimate where it gives one,
+        e.g. the walkers' mean pressure for Monte Carlo, else the grid quadrature), plus sigma_Y A_pl."""
+        load = self.load_estimate_all if self.load_estimate_all is not None else self._moment(1)
         if self.plastic_area_all is not None:
             load = load + self.sigma_Y[:, None] * self.plastic_area_all
         return load
@@ -373,6 +516,8 @@ class Solution:
         L1 = np.abs(diff) @ self.weights
         Linf = np.max(np.abs(diff), axis=-1)
         dA = np.abs(self.contact_area_all - A_ex)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dA_rel = np.where(dA == 0, 0.0, dA / A_ex)
         drift = np.abs(self.load_all - self.problem.p_bar) / self.problem.p_bar
         if self.contact_area_flux_all is not None:
             mb = np.abs(self.contact_area_all - self.contact_area_flux_all)
@@ -398,6 +543,8 @@ class Solution:
             reference="cell averages" if self.kind == "cell" else "point values",
             stderr_area=self.stderr_area_all,
             **hard,
+            area_error_rel=dA_rel,
+            stderr_load=self.stderr_load_all,
         )
 
     @property
@@ -442,7 +589,8 @@ class Solution:
         c = self.compare().final()
         return (
             f"{self.method}: n_p={self.p.size}, steps={self.info.get('steps')}, wall={self.wall_time * 1e3:.2f} ms, "
-            f"L1={c['L1']:.3e}, |dA*|={c['area_error']:.3e}, load drift={c['load_drift']:.3e}"
+            f"L1={c['L1']:.3e}, |dA*|={c['area_error']:.3e} ({c['area_error_rel']:.2e} relative), "
+            f"load drift={c['load_drift']:.3e}"
         )
 
     def plot(self, ax=None, **kwargs):

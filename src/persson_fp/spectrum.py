@@ -98,9 +98,22 @@ class PSD:
                 value.setflags(write=False)
 
     def _freeze(self) -> None:
-        """End of a subclass's ``__init__``: make the instance (and its arrays) read-only."""
+        """End of a subclass's ``__init__``: check the range, make the instance (and its arrays) read-only."""
+        self._check_range()
         self._freeze_arrays()
         self._frozen = True
+
+    def _check_range(self) -> None:
+        """Raise ``ValueError`` unless C at the band's ends and the moments used (k = 1, 2, 3: heights,
+        elastic energy, slopes) are finite and > 0 -- an over- or underflow would give V = inf or 0."""
+        with np.errstate(all="ignore"):
+            vals = [float(self.C(np.array(q))) for q in (self.q_l, self.q_s)]
+            vals += [float(self.moment(k)) for k in (1, 2, 3)]
+        if not all(np.isfinite(v) and v > 0 for v in vals):
+            raise ValueError(
+                f"{self!r}: C(q) or its moments (<h^2>, <|grad h|^2>) leave floating-point range "
+                f"(got {[float(v) for v in vals]}); rescale the length unit"
+            )
 
     @property
     def zeta_max(self) -> float:
@@ -223,8 +236,9 @@ class PSD:
         numpy.ndarray, pressure^2
             V at each ``zeta``.
         """
-        E_star = as_positive_scalar(E_star, "E_star")
-        return 0.25 * E_star**2 * self.grad2(zeta)
+        E_star = np.float64(as_positive_scalar(E_star, "E_star"))
+        with np.errstate(over="ignore"):  # out of range -> inf (ContactProblem refuses it), never OverflowError
+            return 0.25 * E_star**2 * self.grad2(zeta)
 
     def zeta_of_V(self, V: ArrayLike, E_star: float = 1.0) -> np.ndarray:
         """Magnification at which the complete-contact variance reaches ``V``.
@@ -244,10 +258,11 @@ class PSD:
         numpy.ndarray, dimensionless
             zeta with V(zeta) = ``V``: 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
         """
-        E_star = as_positive_scalar(E_star, "E_star")
+        E_star = np.float64(as_positive_scalar(E_star, "E_star"))
         V = np.asarray(as_float_array(V, "V"), dtype=float)
         M_max = float(self.moment(3))
-        M = np.clip(V / (0.5 * np.pi * E_star**2), 0.0, M_max)
+        with np.errstate(over="ignore"):
+            M = np.clip(V / (0.5 * np.pi * E_star**2), 0.0, M_max)
         z = np.clip(self.moment_inverse(3, M) / self.q_l, 1.0, self.zeta_max)
         return np.where(M >= M_max, self.zeta_max, np.where(M <= 0.0, 1.0, z))
 
@@ -359,6 +374,19 @@ class SelfAffinePSD(PSD):
         return f"SelfAffinePSD(C0={self.C0!r}, H={self.H!r}, q_l={self.q_l!r}, q_r={self.q_r!r}, q_s={self.q_s!r})"
 
     @classmethod
+    def _unit(cls, H, q_l, q_r, q_s):
+        """The spectrum with C0 = 1 (the shape that a constructor from rms values scales)."""
+        try:
+            return cls(1.0, H, q_l, q_r, q_s)
+        except ValueError as err:
+            if "floating-point range" not in str(err):
+                raise
+            raise ValueError(
+                f"q_l, q_r, q_s = {float(q_l)!r}, {float(q_r)!r}, {float(q_s)!r} put q^(-2(1+H)) out of floating-point "
+                "range; rescale the length unit"
+            ) from None
+
+    @classmethod
     def from_rms_slope(cls, rms_slope: float, H: float, q_l: float, q_r: float, q_s: float) -> SelfAffinePSD:
         """Spectrum whose rms slope over ``[q_l, q_s]`` is ``rms_slope``.
 
@@ -375,10 +403,10 @@ class SelfAffinePSD(PSD):
             The spectrum with ``C0`` chosen for that slope.
         """
         rms_slope = as_positive_scalar(rms_slope, "rms_slope")
-        unit = cls(1.0, H, q_l, q_r, q_s)
+        unit = cls._unit(H, q_l, q_r, q_s)
         with np.errstate(over="ignore"):
             C0 = np.float64(rms_slope) ** 2 / unit.grad2()
-        if not np.isfinite(C0):
+        if not (np.isfinite(C0) and C0 > 0):
             raise ValueError(f"rms_slope = {rms_slope!r} puts C0 out of floating-point range; rescale the units")
         return cls(C0, H, q_l, q_r, q_s)
 
@@ -399,10 +427,10 @@ class SelfAffinePSD(PSD):
             The spectrum with ``C0`` chosen for that height.
         """
         rms_height = as_positive_scalar(rms_height, "rms_height")
-        unit = cls(1.0, H, q_l, q_r, q_s)
+        unit = cls._unit(H, q_l, q_r, q_s)
         with np.errstate(over="ignore"):
             C0 = np.float64(rms_height) ** 2 / unit.h2()
-        if not np.isfinite(C0):
+        if not (np.isfinite(C0) and C0 > 0):
             raise ValueError(f"rms_height = {rms_height!r} puts C0 out of floating-point range; rescale the units")
         return cls(C0, H, q_l, q_r, q_s)
 
@@ -413,7 +441,7 @@ class SelfAffinePSD(PSD):
 
     def C(self, q: ArrayLike) -> np.ndarray:
         q = as_float_array(q, "q")
-        plateau = self.C0 * self.q_r ** (-2.0 * (1.0 + self.H))
+        plateau = self.C0 * np.power(np.float64(self.q_r), -2.0 * (1.0 + self.H))
         with np.errstate(divide="ignore"):
             tail = self.C0 * np.power(np.where(q > 0, q, 1.0), -2.0 * (1.0 + self.H))
         inside = (q >= self.q_l) & (q <= self.q_s)
@@ -440,14 +468,14 @@ class SelfAffinePSD(PSD):
         z = np.asarray(self._zeta(zeta), dtype=float)
         q_hi = z * self.q_l
         q_mid = np.minimum(q_hi, self.q_r)
-        plateau = self.C0 * self.q_r ** (-2.0 * (1.0 + self.H)) * powint(self.q_l, q_mid, k + 1.0)
+        plateau = self.C0 * np.power(np.float64(self.q_r), -2.0 * (1.0 + self.H)) * powint(self.q_l, q_mid, k + 1.0)
         tail_hi = np.maximum(q_hi, self.q_r)
         tail = self.C0 * powint(self.q_r, tail_hi, k - 1.0 - 2.0 * self.H)
         return plateau + tail
 
     def moment_inverse(self, k: float, M: ArrayLike) -> np.ndarray:
         M = np.asarray(M, dtype=float)
-        c_plateau = self.C0 * self.q_r ** (-2.0 * (1.0 + self.H))
+        c_plateau = self.C0 * np.power(np.float64(self.q_r), -2.0 * (1.0 + self.H))
         M_r = c_plateau * powint(self.q_l, self.q_r, k + 1.0)  # the plateau's share
         q_plat = powint_inverse(self.q_l, np.minimum(M, M_r) / c_plateau, k + 1.0)
         q_tail = powint_inverse(self.q_r, np.maximum(M - M_r, 0.0) / self.C0, k - 1.0 - 2.0 * self.H)
@@ -507,13 +535,15 @@ class TabulatedPSD(PSD):
         if C.shape != q.shape:
             raise ValueError(f"C must have the same length as q ({q.size}), got {C.size}")
         if np.any(q <= 0):
-            raise ValueError(f"q must be > 0 everywhere, got {q[q <= 0][0]!r}")
+            raise ValueError(f"q must be > 0 everywhere, got {float(q[q <= 0][0])!r}")
         if np.any(np.diff(q) <= 0):
             i = int(np.argmax(np.diff(q) <= 0))
-            raise ValueError(f"q must be strictly increasing; q[{i + 1}] = {q[i + 1]!r} <= q[{i}] = {q[i]!r}")
+            raise ValueError(
+                f"q must be strictly increasing; q[{i + 1}] = {float(q[i + 1])!r} <= q[{i}] = {float(q[i])!r}"
+            )
         if np.any(C <= 0):
             i = int(np.argmax(C <= 0))
-            raise ValueError(f"C must be > 0 everywhere (log-log interpolation); C[{i}] = {C[i]!r}")
+            raise ValueError(f"C must be > 0 everywhere (log-log interpolation); C[{i}] = {float(C[i])!r}")
         if convention != "persson" or q_unit != "rad/length":
             q, C = to_persson(q, C, convention, q_unit, H)
             if np.any(C <= 0):  # only the numerical Abel inversion of a rising 1-D PSD can do this

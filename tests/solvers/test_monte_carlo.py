@@ -43,7 +43,10 @@ def test_bridge_removes_the_discrete_monitoring_bias(problem):
     N = 100_000
     bias = {}
     for steps in (4, 16):
-        plain = pf.solve(problem, MC, n_walkers=N, n_steps=steps, bridge=False, seed=SEED)
+        with pytest.raises(pf.SolverError, match="load_balance"):  # the bias breaks the load balance
+            pf.solve(problem, MC, n_walkers=N, n_steps=steps, bridge=False, seed=SEED)
+        with pytest.warns(RuntimeWarning, match="load_balance"):
+            plain = pf.solve(problem, MC, n_walkers=N, n_steps=steps, bridge=False, seed=SEED, check=False)
         bridged = pf.solve(problem, MC, n_walkers=N, n_steps=steps, bridge=True, seed=SEED)
         ex = pf.exact(problem).contact_area
         assert plain.contact_area[-1] - ex > 20 * plain.stderr_area_all[-1, 0]  # biased high, many SE

@@ -57,7 +57,7 @@ def get_solver(method: str | type[Solver]) -> type[Solver]:
     """
     if isinstance(method, type) and issubclass(method, Solver):
         return method
-    if method not in METHODS:
+    if not isinstance(method, str) or method not in METHODS:
         raise ValueError(f"method must be 'auto', one of {sorted(METHODS)} or a Solver subclass, got {method!r}")
     if method in EXTRAS:
         pkg, extra = EXTRAS[method]
@@ -104,6 +104,10 @@ def solve(
     method: str | type[Solver] = "fv",
     zeta_out: ArrayLike | None = None,
     tol: float | None = None,
+    *,
+    check: bool = True,
+    max_memory: float | None = None,
+    max_time: float | None = None,
     **options,
 ) -> Solution:
     """Solve Persson's diffusion problem numerically and return a :class:`~persson_fp.Solution`.
@@ -122,6 +126,16 @@ def solve(
         1e-6 there) and with "fv" / "mol" the resolution is chosen for it, the result checked (against
         :func:`persson_fp.exact`, or the solver's own estimate where no closed form exists) and refined until it
         meets ``tol``; ``info["auto"]`` says what was done.  With "sines" it is the series' truncation tolerance.
+    check : bool, default True
+        Check the invariants of the result (A* in [0, 1] and non-increasing, load balance, P0 >= 0,
+        finite; :func:`persson_fp.solution.check_invariants`): a breach raises
+        :class:`~persson_fp.SolverError`; ``False`` turns it into a ``RuntimeWarning``.
+    max_memory : float, optional
+        Memory budget in bytes (default ``solvers.base.MEMORY_BUDGET``, 4 GiB): a run estimated to
+        need more is refused with a ``ValueError`` stating the estimate.
+    max_time : float, optional
+        Run-time budget in seconds (default ``solvers.base.TIME_BUDGET``, 1 hour), checked the same way
+        for the methods with a time model (fv, chapman-kolmogorov, monte-carlo).
     **options
         Shared knobs (``n_p``, ``n_steps``, ``rtol``, ``atol``, ``scheme``) and
         the method's own options (``get_solver(method).OPTIONS``).
@@ -134,13 +148,16 @@ def solve(
     Raises
     ------
     ValueError
-        Unknown method or an option out of range.
+        Unknown method, an option out of range, a load outside the method's range of relative accuracy
+        (the message names the method that handles it), or a run over the memory budget.
     TypeError
         A misspelt option.
     ImportError
         The method's optional package is missing (names the pip extra).
     InstabilityError
         The discrete evolution went unstable.
+    SolverError
+        The result breaks an invariant (with ``check=True``).
     """
     if isinstance(method, str) and method == "auto":
         from .auto import solve_auto
@@ -154,4 +171,4 @@ def solve(
     if tol is not None:
         options["tol"] = tol
     cls = get_solver(method)
-    return cls(problem, zeta_out=zeta_out, **options).run()
+    return cls(problem, zeta_out=zeta_out, check=check, max_memory=max_memory, max_time=max_time, **options).run()

@@ -24,38 +24,75 @@ import numpy as np
 from .._validate import as_float_array
 from ..exact import exact
 from ..problem import ContactProblem
-from ..solution import InstabilityError, Solution
+from ..solution import DEFAULT_TOLERANCES, InstabilityError, Solution
 
-__all__ = ["Solver", "SolverOutput", "SHARED_KNOBS", "check_int", "check_float", "check_bool", "MIN_SIGMA_CELLS"]
+__all__ = [
+    "Solver",
+    "SolverOutput",
+    "SHARED_KNOBS",
+    "check_int",
+    "check_float",
+    "check_bool",
+    "check_k_domain",
+    "MIN_SIGMA_CELLS",
+    "K_DOMAIN_MIN",
+    "LOAD_RATIO_RANGE",
+    "MEMORY_BUDGET",
+    "MEMORY_MODELS",
+    "TIME_BUDGET",
+    "TIME_MODELS",
+]
 
 SHARED_KNOBS = ("n_p", "n_steps", "rtol", "atol", "scheme", "zeta_out")
 """Resolution knobs every method accepts (and warns about when it ignores one)."""
 
 
-def check_int(value, name: str, lo: int, hi: int | None = None) -> int:
-    """An integer in [lo, hi] or a ``ValueError`` naming ``name`` and the range (bools are refused)."""
+def _is_real_scalar(value) -> bool:
+    """A real number that is not a bool (bools, complex, strings, lists, arrays of size != 1 are not)."""
     if isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
-    try:
-        iv = int(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}") from None
-    if iv != value or iv < lo or (hi is not None and iv > hi):
-        rng = f"[{lo}, {hi}]" if hi is not None else f">= {lo}"
+        return False
+    if isinstance(value, np.ndarray):
+        return value.ndim == 0 and value.dtype.kind in "iuf"
+    return isinstance(value, (int, float, np.integer, np.floating))
+
+
+MAX_INT = 10**9
+"""Upper bound of an integer option given without its own (grid sizes, steps, iterations, walkers)."""
+
+
+def check_int(value, name: str, lo: int, hi: int | None = None) -> int:
+    """An integer in [lo, hi] (hi default :data:`MAX_INT`) or a ``ValueError`` naming ``name`` and the range.
+
+    Bools, complex numbers, strings, lists, NaN and inf are refused (never an ``OverflowError``);
+    integral floats such as ``1e3`` are accepted.
+    """
+    if hi is None:  # no option is meant to be astronomically large: 1e300 iterations is a hang
+        hi = MAX_INT
+    rng = f"[{lo}, {hi}]"
+    if not _is_real_scalar(value):
         raise ValueError(f"{name} must be an integer {rng}, got {value!r}")
+    if isinstance(value, (float, np.floating, np.ndarray)):
+        x = float(value)
+        if not np.isfinite(x) or x != np.floor(x):
+            raise ValueError(f"{name} must be an integer {rng}, got {x!r}")
+    iv = int(value)
+    if iv < lo or (hi is not None and iv > hi):
+        raise ValueError(f"{name} must be an integer {rng}, got {iv!r}")
     return iv
 
 
 def check_float(value, name: str, lo: float, hi: float = np.inf, *, lo_open: bool = True) -> float:
-    """A finite float in (lo, hi] (or [lo, hi]) or a ``ValueError`` naming ``name`` and the range."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    """A finite float in (lo, hi] (or [lo, hi]) or a ``ValueError`` naming ``name`` and the range.
+
+    Bools, complex numbers, strings and lists are refused.
+    """
+    br = "(" if lo_open else "["
+    if not _is_real_scalar(value):
+        raise ValueError(f"{name} must be a real number in {br}{lo:g}, {hi:g}], got {value!r}")
+    x = float(value)
     ok = np.isfinite(x) and (x > lo if lo_open else x >= lo) and x <= hi
     if not ok:
-        br = "(" if lo_open else "["
-        raise ValueError(f"{name} must lie in {br}{lo}, {hi}], got {value!r}")
+        raise ValueError(f"{name} must lie in {br}{lo:g}, {hi:g}], got {x!r}")
     return x
 
 
@@ -65,6 +102,67 @@ def check_bool(value, name: str) -> bool:
         raise ValueError(f"{name} must be True or False, got {value!r}")
     return bool(value)
 
+
+K_DOMAIN_MIN = 5.0
+"""Smallest ``k_domain`` (far wall at max(p_bar) + k_domain sqrt(tau(zeta_max))) a grid method accepts:
+the far wall then takes less than erfc(5/sqrt(2)) / 2 ~ 3e-7 of the mass, below the methods' default
+accuracy; at k_domain = 1 it takes most of the load."""
+
+
+def check_k_domain(value, hi: float = 100.0) -> float:
+    """``k_domain`` in [K_DOMAIN_MIN, hi] or a ``ValueError`` naming it, the range and the reason."""
+    k = check_float(value, "k_domain", 0.0, hi)
+    if k < K_DOMAIN_MIN:
+        raise ValueError(
+            f"k_domain must lie in [{K_DOMAIN_MIN:g}, {hi:g}], got {k!r}: the far wall at p_bar + k_domain sqrt(tau) "
+            "would absorb part of the load (the closed form has no far wall)"
+        )
+    return k
+
+
+LOAD_RATIO_RANGE = {
+    "fv": (1e-10, np.inf),
+    "chapman-kolmogorov": (1e-10, np.inf),
+}
+"""Loads p_bar / sqrt(tau(zeta_max)) where a method keeps its relative accuracy (others are refused).
+
+Below 1e-10 the cell averages of the finite-volume and Chapman--Kolmogorov methods lose the load to
+round-off (measured: 7e-4 relative A* error at 1e-14, 93 % at 1e-20); 'sines' and pf.exact are exact
+there.  Large loads are refused by the grid-resolution checks with the same hint."""
+
+_HANDLERS = "method 'sines' (p_bar / sqrt(tau) up to about 2e3) or the closed form pf.exact (any load) handle it"
+
+MEMORY_BUDGET = 4 * 2**30
+"""Default ``max_memory`` (bytes) of a solve: 4 GiB.  Override per call, ``pf.solve(..., max_memory=...)``."""
+
+MEMORY_MODELS = {
+    # (options, n_loads, n_stations, with_fudge) -> bytes, fitted to tracemalloc peaks (reference problem)
+    # fv: 85 MB at n_p = 2e4, 100 steps; 1.67 GB at 2000 steps (the trajectory of one load is kept)
+    "fv": lambda o, nl, nz, f: 48.0 * o["n_p"] * (o["n_steps"] + 10) + 160.0 * o["n_p"] * nl,
+    # mol: 0.38 GB at n_p = 2e4, 1.8 GB at 8e4, 1.3 GB for 50 loads x 2000 points (dense output of BDF)
+    "mol": lambda o, nl, nz, f: 25e3 * o["n_p"] * nl,
+    # Chapman--Kolmogorov: 22 MB at n_p = 2e4 (banded kernel)
+    "chapman-kolmogorov": lambda o, nl, nz, f: 1e3 * o["n_p"] * nl + 8.0 * o["n_p"] * nl * nz,
+    # Monte Carlo: histograms (4 arrays per station and load), one chunk of temporaries, all walkers with S(A*)
+    "monte-carlo": lambda o, nl, nz, f: (
+        32.0 * o["n_p"] * nl * nz
+        + 64.0 * min(o["chunk_size"], o["n_walkers"] * nl)
+        + (16.0 * o["n_walkers"] * nl if f else 0.0)
+    ),
+}
+"""Peak-memory estimates (bytes) per method, checked before anything is allocated (:meth:`Solver.check_memory`)."""
+
+TIME_BUDGET = 3600.0
+"""Default ``max_time`` (seconds) of a solve.  Override per call, ``pf.solve(..., max_time=...)``."""
+
+TIME_MODELS = {
+    # seconds, from single-core timings of the reference problem (order of magnitude: they bound runaway
+    # requests such as n_walkers = 1e9, not the ordinary ones)
+    "fv": lambda o, nl, nz, f: 1.2e-7 * o["n_p"] * (o["n_steps"] + 10) * (1.0 + nl / 8.0),
+    "chapman-kolmogorov": lambda o, nl, nz, f: 3.5e-6 * o["n_p"] * (o["n_steps"] + nz) * nl,
+    "monte-carlo": lambda o, nl, nz, f: 1.6e-7 * o["n_walkers"] * nl * (o["n_steps"] + nz),
+}
+"""Run-time estimates (seconds) per method, checked with the memory (:meth:`Solver.check_memory`)."""
 
 MIN_SIGMA_CELLS = 1.0
 """A cell method refuses a first station with sqrt(tau) < MIN_SIGMA_CELLS * dp (the PDF would be narrower
@@ -89,6 +187,8 @@ class SolverOutput:
     stderr_area: np.ndarray | None = None
     plastic_area: np.ndarray | None = None
     """A_pl at the stations, (n_zeta_out, n_loads), for a problem with a hardness wall."""
+    load: np.ndarray | None = None
+    stderr_load: np.ndarray | None = None
 
 
 class Solver:
@@ -110,7 +210,9 @@ class Solver:
     OPTIONS: dict = {}
     """Options of the method with their defaults (shared knobs it uses included)."""
 
-    def __init__(self, problem: ContactProblem, zeta_out=None, **options):
+    def __init__(
+        self, problem: ContactProblem, zeta_out=None, *, check=True, max_memory=None, max_time=None, **options
+    ):
         if not isinstance(problem, ContactProblem):
             raise ValueError(f"problem must be a ContactProblem, got {type(problem).__name__}")
         self.problem = problem
@@ -132,6 +234,9 @@ class Solver:
                     "general": "'fv' or 'mol'",
                 }
                 raise ValueError(f"method {self.name!r} does not solve {what}; use method={which[need]}")
+        self.check = check_bool(check, "check")
+        self.max_memory = MEMORY_BUDGET if max_memory is None else check_float(max_memory, "max_memory", 0.0)
+        self.max_time = TIME_BUDGET if max_time is None else check_float(max_time, "max_time", 0.0)
         known = set(self.OPTIONS)
         for key in list(options):
             if key in known:
@@ -146,6 +251,8 @@ class Solver:
         self.opts = {**self.OPTIONS, **options}
         self.zeta_out = self._check_zeta_out(zeta_out)
         self.validate()
+        self.check_load_range()
+        self.check_memory()
 
     # -- to be written by a method ------------------------------------------------------------
     def validate(self) -> None:
@@ -153,6 +260,68 @@ class Solver:
 
     def _solve(self) -> SolverOutput:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    def invariant_tolerances(self) -> dict:
+        """Tolerances of the invariant check (:func:`persson_fp.solution.check_invariants`) for this run.
+
+        Tied to the requested accuracy: the defaults (:data:`~persson_fp.solution.DEFAULT_TOLERANCES`:
+        load drift 1e-2, A* growth 1e-6 relative), loosened to 100 x ``rtol`` (load) and 10 x ``rtol``
+        (A*) for a method run at a looser tolerance than that.
+        """
+        tol = dict(DEFAULT_TOLERANCES)
+        r = max(float(self.opts.get("rtol") or 0.0), float(self.opts.get("tol") or 0.0))
+        tol["load"] = max(tol["load"], 100.0 * r)
+        tol["area"] = max(tol["area"], 10.0 * r)
+        start = getattr(self, "_start_load_error", None)
+        if start is not None:  # a one-cell delta carries the load of its cell centre from the start
+            tol["load"] = tol["load"] + start
+        return tol
+
+    def check_load_range(self) -> None:
+        """Refuse loads outside the method's range of relative accuracy (:data:`LOAD_RATIO_RANGE`).
+
+        The ratio is p_bar / sqrt(tau(zeta_max)) (tau = V without a fudge factor); the message names
+        the methods that handle the load.
+        """
+        lo, hi = LOAD_RATIO_RANGE.get(self.name, (0.0, np.inf))
+        pr = self.problem
+        scale = pr.tau_max if pr.has_closed_form else pr.V_max  # (no exact tau for a moving wall with S)
+        ratio = pr.p_bar / np.sqrt(scale)
+        for bad, side in ((ratio < lo, f"below {lo:g}"), (ratio > hi, f"above {hi:g}")):
+            if np.any(bad):
+                r = float(ratio[bad][0])
+                raise ValueError(
+                    f"{self.name}: the load p_bar / sqrt(tau(zeta_max)) = {r:.3g} is {side}, where this method "
+                    f"loses its relative accuracy; {_HANDLERS}"
+                )
+
+    def check_memory(self, n_p=None) -> None:
+        """Refuse a run whose estimated peak memory (:data:`MEMORY_MODELS`) exceeds ``max_memory``
+        (default :data:`MEMORY_BUDGET`), with a ``ValueError`` that states the estimate.
+
+        ``n_p``: the grid size where the method fixes it only later (mol's automatic grid).
+        """
+        model = MEMORY_MODELS.get(self.name)
+        o = dict(self.opts)
+        if n_p is not None:
+            o["n_p"] = n_p
+        if model is None or o.get("n_p", 0) is None:
+            return
+        args = (o, self.problem.n_loads, self.zeta_out.size, self.problem.fudge.name != "none")
+        need = float(model(*args))
+        secs = float(TIME_MODELS[self.name](*args)) if self.name in TIME_MODELS else 0.0
+        if secs > self.max_time:
+            raise ValueError(
+                f"{self.name}: this run would take about {secs:.3g} s (estimate), more than max_time = "
+                f"{self.max_time:.3g} s; use a coarser grid (n_p, n_steps), fewer loads or walkers (n_walkers), "
+                "or pass a larger max_time (seconds)"
+            )
+        if need > self.max_memory:
+            raise ValueError(
+                f"{self.name}: this run would need about {need / 2**30:.3g} GiB of memory (estimate), more than "
+                f"max_memory = {self.max_memory / 2**30:.3g} GiB; use a coarser grid (n_p, n_steps), fewer loads or "
+                "walkers (n_walkers), or pass a larger max_memory (bytes) if the machine has it"
+            )
 
     # -- shared machinery ------------------------------------------------------------------------
     @functools.cached_property
@@ -180,12 +349,13 @@ class Solver:
     def validate_start_options(self) -> None:
         """Check the start-up and domain options a cell method shares (present ones only):
         ``tau0_fraction`` in (0, 1], ``k_domain`` in (0, 100], ``zeta0`` in [1, first station],
-        ``allow_unstable`` a real bool."""
+        ``allow_unstable`` a real bool.  ``k_domain`` below :data:`K_DOMAIN_MIN` is refused: the far wall
+        would absorb a visible part of the load (82 % of it at k_domain = 1)."""
         o = self.opts
         if o.get("tau0_fraction") is not None:
             o["tau0_fraction"] = check_float(o["tau0_fraction"], "tau0_fraction", 0.0, 1.0)
         if "k_domain" in o:
-            o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 100.0)
+            o["k_domain"] = check_k_domain(o["k_domain"])
         if "allow_unstable" in o:
             o["allow_unstable"] = check_bool(o["allow_unstable"], "allow_unstable")
         if o.get("zeta0") is not None:
@@ -271,7 +441,7 @@ class Solver:
             raise ValueError(
                 f"{self.name}: the first output station zeta = {self.zeta_out[0]:.6g} is not resolved by the grid "
                 f"(sqrt(tau) = {np.sqrt(tau_first):.3e} < {MIN_SIGMA_CELLS:g} cells of {dp:.3e}); "
-                f"raise {what} by a factor >= {grow:.3g}, lower k_domain, or start zeta_out later"
+                f"raise {what} by a factor >= {grow:.3g} or start zeta_out later; {_HANDLERS}"
             )
 
     def initial_cell_averages(self, edges):
@@ -289,6 +459,8 @@ class Solver:
             P = np.zeros((pr.n_loads, n_p))
             idx = np.minimum(np.searchsorted(edges, pr.p_bar, side="right") - 1, n_p - 1)
             P[np.arange(pr.n_loads), idx] = 1.0 / dp[idx]
+            centre = 0.5 * (edges[idx] + edges[idx + 1])
+            self._start_load_error = np.abs(centre - pr.p_bar) / pr.p_bar  # the cell's load, not p_bar
             return 1.0, 0.0, P, np.ones(pr.n_loads)
         self.check_resolved(float(np.max(dp)))
         z0 = self.start_zeta(o["zeta0"], o["tau0_fraction"], dp=float(np.max(dp)))
@@ -317,7 +489,8 @@ class Solver:
             )
 
     def run(self) -> Solution:
-        """Solve, time it, and return a checked :class:`Solution`."""
+        """Solve, time it, and return a :class:`Solution` whose invariants are checked
+        (:class:`~persson_fp.solution.SolverError` on a breach, a warning with ``check=False``)."""
         t0 = time.perf_counter()
         out = self._solve()
         wall = time.perf_counter() - t0
@@ -337,4 +510,8 @@ class Solver:
             contact_area_flux=out.contact_area_flux,
             stderr_area=out.stderr_area,
             plastic_area=out.plastic_area,
+            check=self.check,
+            tolerances=self.invariant_tolerances(),
+            load=out.load,
+            stderr_load=out.stderr_load,
         )

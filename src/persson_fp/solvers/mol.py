@@ -64,13 +64,14 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
+from scipy.special import erf
 
 from ..exact import image_pdf
 from ..fudge import NoFudge
 from ..solution import SolverError
 from ..strip import strip_pdf
 from . import moving_wall
-from .base import Solver, SolverOutput, check_float, check_int
+from .base import _HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
 
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
 
@@ -199,8 +200,16 @@ class MethodOfLinesSolver(Solver):
         o = self.opts
         if o["n_p"] is not None:
             o["n_p"] = check_int(o["n_p"], "n_p", 8, 10_000_000)
-        if o["order"] not in (2, 4):
-            raise ValueError(f"order must be 2 or 4, got {o['order']!r}")
+        if not (
+            isinstance(o["order"], (int, np.integer)) and not isinstance(o["order"], bool) and o["order"] in (2, 4)
+        ):
+            shown = o["order"].item() if isinstance(o["order"], np.generic) else o["order"]
+            raise ValueError(f"order must be 2 or 4, got {shown!r}")
+        o["order"] = int(o["order"])
+        if o["tau0_fraction"] is not None:
+            o["tau0_fraction"] = check_float(o["tau0_fraction"], "tau0_fraction", 0.0, 1.0)
+        if o["zeta0"] is not None:
+            o["zeta0"] = check_float(o["zeta0"], "zeta0", 1.0, float(self.zeta_out[0]), lo_open=False)
         if o["integrator"] not in _STIFF + _EXPLICIT:
             raise ValueError(f"integrator must be one of {list(_STIFF + _EXPLICIT)}, got {o['integrator']!r}")
         o["rtol"] = check_float(o["rtol"], "rtol", 0.0, 1.0)
@@ -214,7 +223,7 @@ class MethodOfLinesSolver(Solver):
             o["tol"] = check_float(o["tol"], "tol", 0.0, 1.0)
         if o["initial"] == "delta" and (o["zeta0"] is not None or o["tau0_fraction"] is not None):
             raise ValueError("zeta0 / tau0_fraction apply to initial='exact' only")
-        o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 1e3)
+        o["k_domain"] = check_k_domain(o["k_domain"], 1e3)
 
     # -- grid and start ---------------------------------------------------------------------------
     def _grid(self):
@@ -223,8 +232,17 @@ class MethodOfLinesSolver(Solver):
         if o["n_p"] is None:
             tau_first = float(np.min(self.problem.tau(self.zeta_out[0])))
             h = _H_OVER_SIGMA[o["order"]] * np.sqrt(tau_first)
-            o["n_p"] = int(min(max(np.ceil(L / h) + 1, 16), _N_P_AUTO_MAX))
+            need = np.ceil(L / h) + 1
+            if need > _N_P_AUTO_MAX:  # a PDF too narrow for the domain: refuse rather than under-resolve
+                raise ValueError(
+                    f"mol: the first station zeta = {self.zeta_out[0]:.6g} needs n_p = {need:.3g} grid points "
+                    f"(> {_N_P_AUTO_MAX}) to resolve sqrt(tau) = {np.sqrt(tau_first):.3e} on [0, {L:.3e}]; "
+                    f"start zeta_out later, use closer loads, or {_HANDLERS}"
+                )
+            o["n_p"] = int(max(need, 16))
+        self.check_memory(o["n_p"])
         p = np.linspace(0.0, L, o["n_p"])
+        self.check_resolved(p[1] - p[0])
         return p, p[1] - p[0]
 
     def _start(self, h):
@@ -411,7 +429,11 @@ class MethodOfLinesSolver(Solver):
         nl, m = sysm.n_loads, sysm.m
         integ = o["integrator"]
         tau_scale = float(np.max(pr.tau(pr.zeta_max)))
-        atol = o["atol"] if o["atol"] is not None else o["rtol"] * 1e-2 / np.sqrt(tau_scale)
+        # default atol ~ rtol x the size of P0 ~ A* / sqrt(tau), per load: a tiny load (A* ~ p_bar / sqrt(tau))
+        # keeps its relative accuracy (an atol fixed at 1/sqrt(tau) cost it 5 % at p_bar / sqrt(V) = 1e-8)
+        A_min = np.minimum(erf(pr.p_bar / np.sqrt(2.0 * pr.tau_max)), 1.0)
+        atol_l = o["rtol"] * 1e-2 * A_min / np.sqrt(tau_scale)
+        atol = o["atol"] if o["atol"] is not None else np.repeat(atol_l, m)
         kw = {"method": integ, "rtol": o["rtol"], "atol": atol}
         if integ in _STIFF:
             jac = sysm.jac
@@ -429,7 +451,8 @@ class MethodOfLinesSolver(Solver):
 
             kw["jac"] = jac
         if sysm.augmented:
-            atol_v = np.full(sysm.y0.size, atol)
+            atol_v = np.full(sysm.y0.size, 0.0)
+            atol_v[: nl * m] = atol
             atol_v[nl * m :] = o["rtol"] * tau_scale * 1e-2
             kw["atol"] = atol_v
         zeta_out = self.zeta_out

@@ -149,6 +149,7 @@ class MonteCarloSolver(Solver):
                 ok = False
         if not ok:
             raise ValueError(f"seed must be None, an integer >= 0, a SeedSequence or a numpy Generator, got {seed!r}")
+        self._load_tol = 1e-3  # _solve replaces it by 6 standard errors of the load
 
     def _step_nodes(self):
         """V at the step ends (uniform in V within each station interval, from V = 0) and the station indices."""
@@ -274,6 +275,7 @@ class MonteCarloSolver(Solver):
         m1, m2, m4 = s1 / N, s2 / N, s4 / N
         denom = max(N - 1, 1)
         se_load = np.sqrt(np.maximum(m2 - m1**2, 0.0) / denom)
+        self._load_tol = 6.0 * se_load / pb + 1e-12
         se_m2 = np.sqrt(np.maximum(m4 - m2**2, 0.0) / denom)
         counts = hist.reshape(n_st, L, n_p)
         P0 = counts / (N * h)
@@ -302,4 +304,29 @@ class MonteCarloSolver(Solver):
             info=info,
             contact_area=A,
             stderr_area=se_A,
+            load=m1,
+            stderr_load=se_load,
         )
+
+    def invariant_tolerances(self) -> dict:
+        """Statistical tolerances: the load (the walkers' mean pressure, unbiased: the killed walk is a
+        martingale) within 6 standard errors; A* is a surviving fraction, in [0, 1] and non-increasing
+        by construction; the histogram is non-negative."""
+        tol = super().invariant_tolerances()
+        tol["load"] = self._load_tol
+        return tol
+
+    def check_load_range(self) -> None:
+        """Refuse a load whose expected number of walkers in contact, n_walkers x A*(zeta_max), is below
+        100: A* would have a relative standard error above 10 % (or be 0)."""
+        pr = self.problem
+        A = np.asarray(area_from_tau(pr.p_bar, pr.tau_max), dtype=float)
+        N = self.opts["n_walkers"]
+        j = int(np.argmin(A))
+        if N * A[j] < 100.0 * (1.0 - A[j]):
+            need = 100.0 * (1.0 - A[j]) / max(A[j], 1e-300)
+            raise ValueError(
+                f"monte-carlo: at p_bar = {pr.p_bar[j]:.6g} only n_walkers x A* = {N * A[j]:.3g} walkers are expected "
+                f"to stay in contact (relative standard error of A* > 10 %); raise n_walkers to >= {need:.3g} or use "
+                "method 'sines', 'fv' or the closed form pf.exact"
+            )

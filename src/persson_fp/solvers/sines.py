@@ -94,7 +94,7 @@ import numpy as np
 from scipy.special import erf, roots_laguerre
 
 from ..fudge import NoFudge, Xu24
-from .base import Solver, SolverOutput, check_float, check_int
+from .base import Solver, SolverOutput, check_float, check_int, check_k_domain
 
 __all__ = ["SineSeriesSolver", "series_area", "image_area", "series_pdf", "modes_needed"]
 
@@ -597,7 +597,7 @@ class SineSeriesSolver(Solver):
             o["n_eval"] = check_int(o["n_eval"], "n_eval", 2, 10_000_000)
         o["tol"] = check_float(o["tol"], "tol", 0.0, 1e-2)
         o["rtol"] = check_float(o["rtol"], "rtol", 0.0, 1e-3)
-        o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 1e3)
+        o["k_domain"] = check_k_domain(o["k_domain"], 1e3)
 
     # -- tau(V) from the series area -------------------------------------------------------------
     def _tau_map(self, tab, L, N, V_out, guess):

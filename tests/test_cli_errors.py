@@ -1,0 +1,149 @@
+"""The command never prints a traceback (issue 15): every error is one line and exit code 2, Ctrl-C is
+"interrupted" and 130, an interrupted write leaves no file, options that would be ignored are refused."""
+
+import csv
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import persson_fp as pf
+from persson_fp import cli
+from persson_fp.cli import main
+
+
+def _one_line_error(capsys, rc, word):
+    err = capsys.readouterr().err
+    assert rc == 2, err
+    assert "Traceback" not in err
+    lines = [ln for ln in err.strip().splitlines() if not ln.startswith("note:")]
+    assert len(lines) == 1, err
+    assert word in lines[0], err
+    return lines[0]
+
+
+@pytest.fixture
+def a_file(tmp_path):
+    f = tmp_path / "regular.txt"
+    f.write_text("x")
+    return f
+
+
+CASES = {
+    # file system
+    "output is a folder": (lambda t, f: ["solve", "--method", "sines", "--output", str(t)], "is a directory"),
+    "output under a file": (lambda t, f: ["solve", "--method", "sines", "--output", str(f / "x.csv")], "not a folder"),
+    "plot under a file": (lambda t, f: ["solve", "--method", "sines", "--plot", str(f / "x.png")], "not a folder"),
+    "report into a file": (lambda t, f: ["report", "--no-solvers", "--output", str(f)], "not a folder"),
+    "area into a file": (lambda t, f: ["area", "--n-loads", "5", "--output", str(f)], "not a folder"),
+    "psd-csv folder": (lambda t, f: ["solve", "--psd-csv", str(t)], "--psd-csv: is a directory"),
+    "psd-csv missing": (lambda t, f: ["solve", "--psd-csv", str(t / "none.csv")], "no such file"),
+    # numbers out of range
+    "q-l 1e-300": (lambda t, f: ["solve", "--method", "sines", "--q-l", "1e-300"], "floating-point range"),
+    "E-star 1e308": (lambda t, f: ["solve", "--method", "sines", "--E-star", "1e308"], "--E-star"),
+    "n-p negative": (lambda t, f: ["solve", "--n-p", "-3"], "--n-p must be an integer"),
+    "mol 1e6": (lambda t, f: ["solve", "--method", "mol", "--p-bar-ratio", "1e6"], "pf.exact"),
+    "ck 1e-100": (lambda t, f: ["solve", "--method", "chapman-kolmogorov", "--p-bar-ratio", "1e-100"], "'sines'"),
+    "n-p huge": (lambda t, f: ["solve", "--n-p", "1e8"], "GiB of memory"),
+    "n-loads huge": (lambda t, f: ["area", "--n-loads", "100000000", "--output", str(t)], "--n-loads"),
+    "bad gamma": (lambda t, f: ["solve", "--fudge", "YP08", "--gamma", "2"], "gamma"),
+    # options that would be ignored
+    "H with psd-csv": (lambda t, f: ["solve", "--psd-csv", str(f), "--H", "0.3"], "--H: not used with --psd-csv"),
+    "slope with psd-csv": (lambda t, f: ["solve", "--psd-csv", str(f), "--rms-slope", "0.2"], "--rms-slope"),
+    "gamma without fudge": (lambda t, f: ["solve", "--gamma", "0.4"], "--gamma: not used with --fudge none"),
+    "p-bar with area": (lambda t, f: ["area", "--p-bar", "1", "--output", str(t)], "--p-bar: not used by 'area'"),
+    "fudge with area": (lambda t, f: ["area", "--fudge", "YP08", "--output", str(t)], "--fudge: not used"),
+    "seed without MC": (lambda t, f: ["solve", "--seed", "3"], "--seed: only used with --method monte-carlo"),
+}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_error_is_one_line_and_exit_2(case, tmp_path, a_file, capsys):
+    make, word = CASES[case]
+    rc = main(make(tmp_path, a_file))
+    _one_line_error(capsys, rc, word)
+
+
+@pytest.mark.parametrize(
+    "argv", [["solve", "--n-p", "1e6.5"], ["report", "--fudge", "XYZ"], ["area", "--n-loads"], ["solve", "--bogus"]]
+)
+def test_argparse_errors_are_one_line_too(argv, capsys):
+    with pytest.raises(SystemExit) as e:
+        main(argv)
+    assert e.value.code == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "error:" in err and "--help" in err
+
+
+def test_dev_full_is_a_one_line_error(capsys):
+    if not os.path.exists("/dev/full"):
+        pytest.skip("no /dev/full here")
+    rc = main(["solve", "--method", "sines", "--output", "/dev/full"])
+    _one_line_error(capsys, rc, "/dev/full")
+
+
+def test_as_a_program_no_traceback(tmp_path, a_file):
+    r = subprocess.run(
+        [sys.executable, "-m", "persson_fp.cli", "solve", "--method", "sines", "--output", str(a_file / "x.csv")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert r.returncode == 2
+    assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_existing_output_needs_force(tmp_path, capsys):
+    out = tmp_path / "sol.csv"
+    out.write_text("keep me")
+    rc = main(["solve", "--method", "sines", "--output", str(out)])
+    _one_line_error(capsys, rc, "--force")
+    assert out.read_text() == "keep me"
+    assert main(["solve", "--method", "sines", "--output", str(out), "--force"]) == 0
+    rows = list(csv.reader(open(out)))
+    p = np.array([float(r[0]) for r in rows[1:]])
+    P = np.array([float(r[1]) for r in rows[1:]])
+    ex = pf.exact(pf.ContactProblem.reference())
+    np.testing.assert_allclose(P, ex.pdf(p), rtol=0, atol=1e-8 * P.max())  # sines: point values to ~1e-12
+
+
+def test_folder_outputs_say_when_they_replace(tmp_path, capsys):
+    assert main(["area", "--n-loads", "5", "--output", str(tmp_path)]) == 0
+    capsys.readouterr()
+    assert main(["area", "--n-loads", "5", "--output", str(tmp_path)]) == 0
+    assert "replacing existing contact_area.csv" in capsys.readouterr().err
+
+
+def test_ctrl_c_is_interrupted_130_and_leaves_no_partial_file(tmp_path, monkeypatch, capsys):
+    out = tmp_path / "sol.csv"
+    calls = {"n": 0}
+    real_writer = csv.writer
+
+    class Interrupting:
+        def __init__(self, fh):
+            self.w = real_writer(fh)
+
+        def writerow(self, row):
+            calls["n"] += 1
+            if calls["n"] == 20:  # part of the table is written when the user presses Ctrl-C
+                raise KeyboardInterrupt
+            self.w.writerow(row)
+
+    monkeypatch.setattr(cli.csv, "writer", Interrupting)
+    rc = main(["solve", "--method", "sines", "--output", str(out)])
+    err = capsys.readouterr().err
+    assert rc == 130 and "interrupted" in err and "Traceback" not in err
+    assert calls["n"] == 20
+    assert list(tmp_path.iterdir()) == []  # neither sol.csv nor a temporary file
+
+
+def test_seed_makes_monte_carlo_reproducible(tmp_path):
+    """--seed reaches the random walks: the same seed writes the same histogram, another seed another one."""
+    runs = {}
+    for name, seed in (("a", "5"), ("b", "5"), ("c", "6")):
+        out = tmp_path / f"{name}.csv"
+        assert main(["solve", "--method", "monte-carlo", "--seed", seed, "--output", str(out)]) == 0
+        runs[name] = out.read_text()
+    assert runs["a"] == runs["b"] != runs["c"]
