@@ -113,3 +113,19 @@ def test_solve_json_and_bad_method(tmp_path, capsys):
     assert "method must be " in capsys.readouterr().err
     assert main(["solve", "--method", "fv", "--n-p", "3"]) == 2
     assert "--n-p" in capsys.readouterr().err
+
+
+def test_solve_with_a_hardness(capsys):
+    """persson-fp solve --hardness: the plastic area printed; a moving wall prints the solver's estimate."""
+    from persson_fp.cli import main
+
+    assert main(["solve", "--hardness", "0.075", "--method", "sines"]) == 0
+    out = capsys.readouterr().out
+    ex = pf.exact(pf.ContactProblem.reference(hardness=0.075))
+    assert f"{float(ex.plastic_area):.8f}" in out
+    args = ["solve", "--rms-slope", "4", "--q-r", "1", "--zeta-max", "10", "--p-bar", "0.3", "--hardness", "1"]
+    assert main(args + ["--hardness-exponent", "0.2"]) == 0
+    out = capsys.readouterr().out
+    assert "A_pl" in out and "estimate" in out
+    assert main(["solve", "--hardness-exponent", "0.2"]) == 2
+    assert "--hardness-exponent needs --hardness" in capsys.readouterr().err

@@ -22,6 +22,7 @@ from . import __version__
 from . import fudge as _fudge
 from ._cli_io import CLIError, _atomic_open, _check_new_file, _make_parent, _note_replaced, _save_figure
 from .exact import elastic_energy, exact
+from .hardness import PowerLaw
 from .problem import ContactProblem
 from .solution import SolverError
 from .spectrum import SelfAffinePSD, TabulatedPSD
@@ -234,15 +235,36 @@ def cmd_solve(args) -> int:
     if args.seed is not None and args.method != "monte-carlo":
         raise CLIError("--seed: only used with --method monte-carlo")
     pr = _problem(args)
+    if args.hardness is not None:  # elastoplastic contact: a constant or power-law yield stress
+        n = args.hardness_exponent
+        hard = args.hardness if n == 0 else PowerLaw(args.hardness, n)
+        pr = ContactProblem(pr.psd, pr.E_star, pr.p_bar if pr.n_loads > 1 else pr.p_bar[0], pr.fudge, hardness=hard)
+    elif args.hardness_exponent != 0:
+        raise CLIError("--hardness-exponent needs --hardness")
     opts = {}
     for key in ("n_p", "n_steps", "rtol", "atol", "scheme", "seed"):
         v = getattr(args, key)
         if v is not None:
             opts[key] = v
     t0 = time.perf_counter()
-    sol = solve(pr, method=args.method, **opts)
+    sol = solve(pr, method=args.method, tol=args.tol, **opts)
     wall = time.perf_counter() - t0
+    if not pr.has_closed_form:  # a moving yield wall: the solver's own error estimate instead of the exact one
+        est = sol.error_estimate
+        print(f"{sol.method}: steps = {sol.info.get('steps')}, wall = {wall * 1e3:.2f} ms ({est['kind']})")
+        print(f"{'p_bar':>12} {'A_el':>12} {'A_pl':>12} {'A_non':>12} {'error est.':>10} {'load/p_bar-1':>13}")
+        for j, pb in enumerate(pr.p_bar):
+            print(
+                f"{pb:12.5e} {sol.elastic_area_all[-1, j]:12.8f} {sol.plastic_area_all[-1, j]:12.8f} "
+                f"{1 - sol.contact_area_all[-1, j]:12.8f} {est['contact_area'][-1, j]:10.2e} "
+                f"{sol.load_all[-1, j] / pb - 1:13.2e}"
+            )
+        if args.output or args.plot:
+            raise CLIError("--output/--plot: not available for a scale-dependent hardness yet (use the Python API)")
+        return 0
     cmp_ = sol.compare()
+    if pr.hardness is not None:
+        print("elastoplastic: A_pl (num) " + " ".join(f"{v:.8f}" for v in sol.plastic_area_all[-1]))
     ex = exact(pr)
     print(f"{sol.method}: n_p = {sol.p.size}, steps = {sol.info.get('steps')}, wall = {wall * 1e3:.2f} ms")
     print(
@@ -253,7 +275,7 @@ def cmd_solve(args) -> int:
     for j, pb in enumerate(pr.p_bar):
         print(
             f"{pb:12.5e} {sol.contact_area_all[-1, j]:12.8f} {A_ex[j]:12.8f} {cmp_.area_error[-1, j]:10.2e} "
-            f"{(sol.P0_all[-1, j] @ (sol.weights * sol.p**2) - pb**2):12.5e} "
+            f"{np.reshape(sol.variance, (sol.zeta.size, -1))[-1, j]:12.5e} "
             f"{sol.load_all[-1, j] / pb - 1:13.2e} {cmp_.L1[-1, j]:10.2e}"
         )
     if args.output:
@@ -365,7 +387,7 @@ def build_parser() -> argparse.ArgumentParser:
     so = sub.add_parser("solve", help="solve one problem with a numerical method")
     _add_problem_args(so)
     so.add_argument(
-        "--method", default="fv", help="fv | mol | sines | py-pde | fipy | chapman-kolmogorov | monte-carlo"
+        "--method", default="fv", help="auto | fv | mol | sines | py-pde | fipy | chapman-kolmogorov | monte-carlo"
     )
     so.add_argument("--n-p", dest="n_p", type=_count, default=None, help="grid cells / points / modes")
     so.add_argument("--n-steps", dest="n_steps", type=_count, default=None, help="steps in zeta (fixed-step schemes)")
@@ -376,6 +398,11 @@ def build_parser() -> argparse.ArgumentParser:
     so.add_argument("--plot", default=None, help="write a PNG of P0 against the exact solution")
     so.add_argument("--force", action="store_true", help="replace existing --output / --plot files")
     so.add_argument("--seed", type=_count, default=None, help="seed of the random walks (--method monte-carlo)")
+    so.add_argument("--tol", type=float, default=None, help="asked accuracy: with --method auto, fv or mol")
+    so.add_argument("--hardness", type=float, default=None, help="yield stress sigma_Y at zeta = 1 (pressure)")
+    so.add_argument(
+        "--hardness-exponent", type=float, default=0.0, help="sigma_Y = hardness * zeta^n (default 0: constant)"
+    )
     so.set_defaults(func=cmd_solve)
 
     ar = sub.add_parser("area", help="A*(p_bar) curves for every fudge model (exact)")
