@@ -8,9 +8,9 @@ r"""``method="auto"`` and ``tol=``: ask for an accuracy, not a method.
   speed_accuracy.md`` and ``plasticity.md``.  Its error is then measured against :func:`persson_fp.exact`.  If the
   first station is too narrow for the series (a ``ValueError`` from sines), ``"fv"`` with a resolution for ``tol``.
 * **No closed form** (a scale-dependent hardness, general coefficients): ``"fv"`` on the front-fixed engine,
-  n_p = n_steps = n from the error model measured in ``benchmarks/plasticity.py``
-  (error of the areas ~ 5e-3 / n^2 with n cells and n steps), refined until its own error estimate (a run at half
-  the resolution) meets ``tol``.
+  n_p = n_steps = n from the error models measured in ``benchmarks/plasticity.py`` and ``benchmarks/auto.py``
+  (estimate ~ 2e-2 / n^2 for a moving wall, ~ 50 / n^2 for general coefficients, with n cells and n steps), refined
+  until its own error estimate (a run at half the resolution) meets ``tol``.
 
 ``tol`` bounds both the L1 error of P0 (:math:`\int |P_0 - P_0^{ref}|\,dp`) and the error of every area
 (A*, and A_el, A_pl with a hardness) at every output station.  With a named method, ``tol`` chooses the
@@ -35,8 +35,12 @@ MAX_REFINE = 4
 """Refinements after the first attempt before ``tol`` is declared out of reach."""
 MAX_CELLS = 8192
 """Largest n_p (and n_steps on the front-fixed engine) a refinement may ask for; beyond it ``tol`` is out of reach."""
-_C_FRONT = 5e-3
-"""Front-fixed engine: error of the areas ~ _C_FRONT / n^2 at n cells and n steps (benchmarks/plasticity.py)."""
+_C_FRONT = 2e-2
+"""Front-fixed engine, moving wall: the (conservative) error estimate ~ _C_FRONT / n^2 at n cells and n steps
+(1.5e-2 measured on the moving-wall scene of benchmarks/plasticity.py, rounded up)."""
+_C_GENERAL = 50.0
+"""General coefficients on [0, p_max] (a wider domain in units of the PDF's width): estimate ~ _C_GENERAL / n^2
+(about 40 measured on the scene of benchmarks/auto.py)."""
 _C_FV_STEPS = 0.06
 """fv TR-BDF2 (compact4, graded steps), closed-form scenes: L1 ~ _C_FV_STEPS / n_steps^2 (speed_accuracy.md)."""
 _C_FV_CELLS = 6e-6 * 200.0**4
@@ -69,7 +73,8 @@ def _first_options(problem, method, tol):
     if method == "mol":
         return {"rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
     if not problem.has_closed_form:
-        n = 2 * int(np.clip(math.ceil(math.sqrt(_C_FRONT / tol) / 2), 25, 1600))  # even: the partner has n/2
+        C = _C_GENERAL if problem.general else _C_FRONT
+        n = 2 * int(np.clip(math.ceil(math.sqrt(C / tol) / 2), 25, 1600))  # even: the partner has n/2
         return {"n_p": n, "n_steps": n}
     n_steps = int(np.clip(math.ceil(math.sqrt(2.0 * _C_FV_STEPS / tol)), 20, 20000))
     n_p = int(np.clip(math.ceil((2.0 * _C_FV_CELLS / tol) ** 0.25), 50, 20000))
@@ -146,6 +151,6 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, **options):
     what = "a scale-dependent hardness" if problem.moving_wall else "general Fokker-Planck coefficients"
     why = (
         f"no closed form ({what}): finite volumes on the front-fixed engine, n cells and n steps from the "
-        "measured error model 5e-3/n^2, checked by a half-resolution partner run"
+        "measured error model C/n^2, checked by a half-resolution partner run"
     )
     return solve_to_tol(problem, "fv", zeta_out, tol, why=why)
