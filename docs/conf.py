@@ -77,15 +77,6 @@ def _numpydoc_citation(name: str) -> str:
 
 
 PENDING_DOCSTRING_FIXES = [
-    ("persson_fp.Comparison.area_z_score", 'Undefined substitution referenced: "A*_num - A*_exact"'),
-    ("persson_fp.solvers.fv", "Unexpected indentation"),
-    ("persson_fp.solvers.fv", "Block quote ends without a blank line"),
-    ("persson_fp.solvers.fv", 'Undefined substitution referenced: "P"'),
-    ("persson_fp.solvers.fv", "py:class reference target not found: InstabilityError"),
-    ("persson_fp.solvers.fv", "py:func reference target not found: _amplification"),
-    ("persson_fp.solvers.fv.dst_eigenvalues", "py:func reference target not found: apply_mass"),
-    ("api", _numpydoc_citation("persson_fp.solvers.fv")),  # its References are cited nowhere in its text
-    ("persson_fp.solvers.sines", 'Undefined substitution referenced: "k"'),
 ]
 
 

@@ -54,7 +54,6 @@ PENDING = {
     "ExactSolution.area_asymptote",
     "ExactSolution.second_moment",
     "Solution",
-    "Solution.load_all",
     "Solution.steps",
     "Comparison",
     "Comparison.max_L1",

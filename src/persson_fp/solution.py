@@ -32,7 +32,7 @@ def _station_axis(a):
 
 class SolverError(RuntimeError):
     """A solver could not produce a trustworthy result: it failed, or its result breaks an invariant
-    (:func:`check_invariants`); the message names the invariant and the remedy."""
+    (:func:`~persson_fp.solution.check_invariants`); the message names the invariant and the remedy."""
 
 
 class InstabilityError(SolverError):
@@ -72,7 +72,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
     ----------
     sol : Solution
     tolerances : dict, optional
-        Keys of :data:`DEFAULT_TOLERANCES` (missing keys take the default).
+        Keys of ``DEFAULT_TOLERANCES`` (missing keys take the default).
     raise_on_breach : bool
         True: a breached invariant raises :class:`SolverError` naming it and the remedy; False: a
         ``RuntimeWarning`` with the same text (and ``info["warnings"]``).
@@ -222,12 +222,12 @@ class Comparison:
 
     @property
     def max_area_error_rel(self) -> float:
-        """Largest |dA*| / A*_exact over stations and loads."""
+        """Largest ``|dA*| / A*_exact`` over stations and loads."""
         return float(np.max(self.area_error_rel))
 
     @property
     def area_z_score(self) -> np.ndarray | None:
-        """|A*_num - A*_exact| in units of the standard error of A* (stochastic methods), else None.
+        """``|A*_num - A*_exact|`` in units of the standard error of A* (stochastic methods), else None.
 
         Shape ``(n_zeta, n_loads)``; inf where the standard error is 0 and the error is not.
         """
@@ -340,7 +340,7 @@ class Solution:
         ``contact_area`` is their sum.  ``p`` and ``weights`` may have a leading station axis (moving wall).
 
         ``check=True`` raises :class:`SolverError` on a breached invariant, ``check=False`` only
-        warns (:func:`check_invariants`; ``tolerances`` as there).  ``load`` (with ``stderr_load``)
+        warns (:func:`~persson_fp.solution.check_invariants`; ``tolerances`` as there).  ``load`` (with ``stderr_load``)
         is the method's own estimate of int p P0 dp where the grid quadrature is not the best one
         (Monte Carlo: the mean over the walkers instead of the histogram).
         """

@@ -264,7 +264,7 @@ class Solver:
     def invariant_tolerances(self) -> dict:
         """Tolerances of the invariant check (:func:`persson_fp.solution.check_invariants`) for this run.
 
-        Tied to the requested accuracy: the defaults (:data:`~persson_fp.solution.DEFAULT_TOLERANCES`:
+        Tied to the requested accuracy: the defaults (``persson_fp.solution.DEFAULT_TOLERANCES``:
         load drift 1e-2, A* growth 1e-6 relative), loosened to 100 x ``rtol`` (load) and 10 x ``rtol``
         (A*) for a method run at a looser tolerance than that.
         """

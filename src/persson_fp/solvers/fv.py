@@ -2,7 +2,7 @@ r"""Finite volumes in p, θ-schemes (and TR-BDF2) in the effective variance.
 
 The method
 ----------
-Persson's equation (``E:diffusion_equ`` with ``eq:new_B2``)
+Persson's equation (``E:diffusion_equ`` with ``eq:new_B2``; Persson 2001 [1]_)
 
 .. math::  \frac{\partial P_0}{\partial\zeta} = \tfrac12 B_2(\zeta)\,\frac{\partial^2 P_0}{\partial p^2},
            \qquad B_2 = S(A^*)\,\frac{dV}{d\zeta}, \qquad A^* = \int_0^{p_{max}} P_0\,dp \quad (\texttt{eq:Area})
@@ -31,9 +31,9 @@ is conserved by the p = 0 wall exactly, so its drift measures the far-wall and t
 .. math::  (I - \theta\,\Delta\tau\,L)\,P^{n+1} = (I + (1-\theta)\,\Delta\tau\,L)\,P^n ,
 
 with θ = 0 ("explicit", stable for :math:`r = \tfrac12\Delta\tau/\Delta p^2 \le \tfrac12`),
-θ = 1/2 ("crank-nicolson"), θ = 1 ("implicit", backward Euler), "rannacher" (θ = 1/2 after
+θ = 1/2 ("crank-nicolson"), θ = 1 ("implicit", backward Euler), "rannacher" [3]_ (θ = 1/2 after
 ``rannacher_steps`` steps each done as two backward-Euler half steps) and "tr-bdf2" (an L-stable
-2nd-order one-step method: a trapezoidal stage over :math:`\gamma\Delta\tau` then BDF2, with
+2nd-order one-step method [2]_: a trapezoidal stage over :math:`\gamma\Delta\tau` then BDF2, with
 :math:`\gamma = 2-\sqrt2` so that both stages share one matrix; from ``initial="delta"`` its first
 ``rannacher_steps`` steps are backward-Euler half steps, because L-stability does not make it positive:
 its amplification factor is negative for :math:`\Delta\tau|\lambda| \gtrsim 2.4`, and no 2nd-order
@@ -60,12 +60,12 @@ of "tau" at zeta_max and 30x better at the worst of 24 stations.
 *Coupling of the fudge factor* (``eq:new_B2``), with :math:`A^*` always the numerical
 :math:`\sum\bar P_i\Delta p`:
 
-``"lagged"``     :math:`\Delta\tau = S(A^*_n)\,\Delta V` (1st order; default of "explicit" and "implicit").
-``"predictor"``  Heun: :math:`A^p = A^*_n - \Delta V\,S(A^*_n)\,b_n` from the current wall flux
-                 :math:`b_n`, then :math:`\Delta\tau = \tfrac12\Delta V\,(S(A^*_n)+S(A^p))` (2nd order,
-                 one solve per step; default of "crank-nicolson", "rannacher" and "tr-bdf2").
-``"picard"``     the trapezoidal rule :math:`\Delta\tau = \tfrac12\Delta V\,(S(A^*_n)+S(A^*_{n+1}))`
-                 iterated to ``picard_tol`` (starting from the predictor; 2nd order).
+- ``"lagged"``: :math:`\Delta\tau = S(A^*_n)\,\Delta V` (1st order; default of "explicit" and "implicit").
+- ``"predictor"``: Heun, :math:`A^p = A^*_n - \Delta V\,S(A^*_n)\,b_n` from the current wall flux
+  :math:`b_n`, then :math:`\Delta\tau = \tfrac12\Delta V\,(S(A^*_n)+S(A^p))` (2nd order,
+  one solve per step; default of "crank-nicolson", "rannacher" and "tr-bdf2").
+- ``"picard"``: the trapezoidal rule :math:`\Delta\tau = \tfrac12\Delta V\,(S(A^*_n)+S(A^*_{n+1}))`
+  iterated to ``picard_tol`` (starting from the predictor; 2nd order).
 
 Without a fudge factor :math:`\Delta\tau = \Delta V` exactly and the coupling does nothing.
 
@@ -177,9 +177,9 @@ class FiniteVolumeSolver(SpectralPath, Solver):
         half steps (damps the rough start; TR-BDF2's amplification factor is negative for large
         steps, so from a one-cell delta it would ring: -0.41 of the peak at r >= 36 without it).
     allow_unstable : bool, default False
-        Let "explicit" run past r = 1/2 (then an :class:`InstabilityError` is expected).
+        Let "explicit" run past r = 1/2 (then an :class:`~persson_fp.InstabilityError` is expected).
     check_every : int, default 10
-        Steps between stability checks (NaN, mass growth, max |P0| growth; the l2 norm of P0 on the
+        Steps between stability checks (NaN, mass growth, max ``|P0|`` growth; the l2 norm of P0 on the
         "dst" path).
     tol : float, optional
         Moving yield wall (a scale-dependent hardness) only: raise :class:`~persson_fp.SolverError` when the

@@ -11,7 +11,7 @@ the ghost rules hold for every j; the compact end rows (9, 1)/12 are exactly M's
 
 (:func:`dst_eigenvalues`; checked against the dense matrices to 1e-15 in the tests).  So every
 step above multiplies coefficient j by a rational amplification factor of
-:math:`x_j = \Delta\tau\,\lambda_j`, :math:`\lambda_j = \mu_j/m_j` (:func:`_amplification`):
+:math:`x_j = \Delta\tau\,\lambda_j`, :math:`\lambda_j = \mu_j/m_j` (``_amplification``):
 θ-step :math:`R = (1+(1-\theta)x)/(1-\theta x)`; Rannacher start :math:`(1-x/2)^{-2}`; TR-BDF2,
 whose two stages share :math:`1-h`, :math:`h = \gamma x/2`: :math:`R = (1+(A+B)h)/(1-h)^2` with
 the BDF2 weights A, B (A - B = 1).  Without a fudge factor a whole run is
@@ -32,8 +32,8 @@ discrete solution to ~1e-13.  The wall fluxes are functionals too, accumulated w
 weights (per-mode weight F(x)), so ``contact_area_flux`` and ``far_wall_mass`` are the banded path's to
 round-off.  The stability checks run on coefficients: non-finite values, negative or growing A* (as the
 conserved sum(M P) dp), and growth of :math:`\|P\|_2 = \|c\|_2` (which :math:`|R_j| \le 1` makes
-non-increasing) instead of max |P|; an explicit step past its limit (:math:`|R_j| > 1` for the top
-modes) still raises :class:`InstabilityError`.  The fast path is
+non-increasing) instead of max ``|P|``; an explicit step past its limit (:math:`|R_j| > 1` for the top
+modes) still raises :class:`~persson_fp.InstabilityError`.  The fast path is
 exact for every option of this solver, so "auto" always picks it; ``linalg="banded"`` keeps the
 tridiagonal solves below as the readable reference (the two agree to ~1e-14 of max P0).  It would
 stop being exact with a wall that is not odd (a reflecting far wall, another basis) or a
@@ -165,7 +165,7 @@ def _amplification(kind: str, theta: float, x, work=None):
 
 
 def _growth(kind: str, theta: float, x):
-    """The amplification factor R of :func:`_amplification` alone (no wall-flux weight): the trajectory
+    """The amplification factor R of ``_amplification`` alone (no wall-flux weight): the trajectory
     sweeps of the fudge coupling need only R."""
     if kind == "tr-bdf2":
         T = 1.0 / (1.0 - _BDF2_W * x)
@@ -355,7 +355,7 @@ class SpectralPath:
     def _march_dst(self, P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge) -> dict:
         r"""The time loop of :meth:`_march_banded` in DST-II coefficient space (module docstring).
 
-        Every step multiplies coefficient j by :math:`R(\Delta\tau\lambda_j)` (:func:`_amplification`);
+        Every step multiplies coefficient j by :math:`R(\Delta\tau\lambda_j)` (``_amplification``);
         A* and the wall fluxes are linear functionals of the coefficients, so the coupling of the
         fudge factor needs no transform; P is transformed back only at the output stations.
         """

@@ -77,7 +77,7 @@ the infinite series equals the image sum on [0, L] (Poisson summation), whose ma
 On the direct path (far wall not negligible) :math:`\tau_{sw} = \min(\bar p, L - \bar p)^2/72`, so that
 the far wall's share is below the same bound.
 Between :math:`\tau_{sw}` and :math:`\tau_N` (where the chosen N modes are converged to ``tol``)
-the same infinite series is summed in that dual form (:func:`image_area`, images |k| <= 1,
+the same infinite series is summed in that dual form (:func:`image_area`, images ``|k| <= 1``,
 the rest below e^-200), so the mode count only has to serve the output stations: the default
 is the one that makes the truncation below ``tol`` at the first station.  (Before, N was sized
 for :math:`\bar p^2/72`, and a load of 1e-4 sqrt(V) with a fudge factor needed 1.4 million modes.)
