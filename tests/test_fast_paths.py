@@ -101,3 +101,35 @@ def test_with_loads_validates_the_new_loads():
             pr.with_loads(bad)
     with pytest.raises(ValueError, match="hardness|sigma"):  # a load above the yield stress
         pr.with_loads(3.0 * np.sqrt(pr.V_max))
+
+
+def test_solve_runs_with_one_blas_thread_and_restores_the_pool():
+    threadpoolctl = pytest.importorskip("threadpoolctl")
+    from persson_fp.solvers.sines import SineSeriesSolver
+
+    seen = []
+
+    class Recording(SineSeriesSolver):
+        def _solve(self):
+            seen.append(max(i["num_threads"] for i in threadpoolctl.threadpool_info() if i["user_api"] == "blas"))
+            return super()._solve()
+
+    def blas():
+        return [i["num_threads"] for i in threadpoolctl.threadpool_info() if i["user_api"] == "blas"]
+
+    before = blas()
+    pr = _problem("YP08", None, [0.2, 0.9])
+    a = pf.solve(pr, Recording).contact_area
+    b = pf.solve(pr, Recording, blas_threads=None).contact_area
+    assert seen[0] == 1 and seen[1] == max(before, default=1)
+    assert blas() == before
+    # the thread count changes only the summation order: the same areas to round-off
+    np.testing.assert_allclose(a, b, rtol=1e-13)
+    # and both the exact ones (sines' default: modes for 1e-13)
+    np.testing.assert_allclose(a[-1], pf.exact(pr).contact_area, rtol=1e-9)
+
+
+@pytest.mark.parametrize("bad", [0, -1, 1.5, "1", True])
+def test_blas_threads_is_validated(bad):
+    with pytest.raises(ValueError, match="blas_threads"):
+        pf.solve(_problem(None, None, 0.5), "sines", blas_threads=bad)

@@ -69,7 +69,7 @@ def available_methods() -> list[str]:
     return out
 
 
-def solve(problem, method="fv", zeta_out=None, **options):
+def solve(problem, method="fv", zeta_out=None, blas_threads=1, **options):
     """Solve Persson's diffusion problem numerically and return a :class:`~persson_fp.Solution`.
 
     Parameters
@@ -81,6 +81,10 @@ def solve(problem, method="fv", zeta_out=None, **options):
         "chapman-kolmogorov", "monte-carlo".
     zeta_out : float or array, optional
         Output stations in (1, zeta_max]; default ``zeta_max``.
+    blas_threads : int or None, default 1
+        BLAS threads during the solve (through threadpoolctl, when installed).  One by default: the
+        solvers' products are narrow, and a multithreaded BLAS only oversubscribes the cores on them
+        (``benchmarks/batch_scaling.py``); ``None`` leaves the BLAS library's own setting.
     **options
         Shared knobs (``n_p``, ``n_steps``, ``rtol``, ``atol``, ``scheme``) and
         the method's own options (``get_solver(method).OPTIONS``).
@@ -101,5 +105,10 @@ def solve(problem, method="fv", zeta_out=None, **options):
     InstabilityError
         The discrete evolution went unstable.
     """
-    cls = get_solver(method)
-    return cls(problem, zeta_out=zeta_out, **options).run()
+    from ._threads import blas_threads as _limit
+    from ._threads import check_blas_threads
+
+    n_threads = check_blas_threads(blas_threads)
+    solver = get_solver(method)(problem, zeta_out=zeta_out, **options)
+    with _limit(n_threads):
+        return solver.run()
