@@ -62,14 +62,13 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from ..exact import image_pdf
 from ..fudge import NoFudge
 from ..solution import SolverError
 from ..strip import strip_pdf
-from . import moving_wall
+from . import _ivp_march, moving_wall
 from .base import Solver, SolverOutput, check_float, check_int
 
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
@@ -255,7 +254,7 @@ class MethodOfLinesSolver(Solver):
         pi = p[1:-1]
         w = quadrature_weights(n_p, h, order)[1:-1]
         Lm = laplacian(m, h, order)
-        Lb = sp.block_diag([Lm] * nl, format="csr") if nl > 1 else Lm
+        Lb = sp.kron(sp.identity(nl, format="csr"), Lm, format="csr") if nl > 1 else Lm
         fudge = pr.fudge
         nofudge = isinstance(fudge, NoFudge)
         self._grid_cache = (p, h, w)
@@ -381,6 +380,8 @@ class MethodOfLinesSolver(Solver):
         pr = self.problem
         if isinstance(pr.fudge, NoFudge):
             return np.full(pr.n_loads, tau0)
+        if pr.hardness is None:  # the inverse of the same effective-variance table, all loads at once (~1e-13)
+            return pr.V_of_tau_each(np.full(pr.n_loads, float(tau0)))
         S1 = float(pr.fudge.S(np.array(1.0)))
         out = np.empty(pr.n_loads)
         V_max = float(pr.V(pr.zeta_max))
@@ -441,48 +442,33 @@ class MethodOfLinesSolver(Solver):
         if t_eval is not None and t_eval[0] < sysm.t0:
             raise ValueError(f"the start-up ({sysm.t0:.6g}) lies beyond the first output station; lower tau0_fraction")
 
-        if sysm.augmented:
-            V_end = float(pr.V(zeta_out[-1]))
-            n = nl * m
+        # stepped by hand (_ivp_march): no dense output kept, each load's stations on its own rows only
+        method = kw.pop("method")
+        n = nl * m
+        t_end = sysm.t1 if sysm.augmented else float(t_eval[-1])
+        # in tau the Jacobian's P part is one Laplacian block per load, shared: factor it once per step
+        blocks = (nl, m) if o["variable"] == "tau" else None
+        solver = _ivp_march.make_solver(method, sysm.fun, sysm.t0, sysm.y0, t_end, blocks=blocks, **kw)
+        try:
+            if sysm.augmented:
+                V_out = np.atleast_1d(pr.V(zeta_out)).astype(float)
+                pi = p[1:-1]
+                sig = None if pr.hardness is None else float(pr.hardness.sigma(1.0))
 
-            def done(t, y):
-                return float(np.min(y[n:])) - V_end
+                def S_of(P, j):  # S at the area of load j's P (..., m), A_pl from the load balance with a hardness
+                    A = P @ w if sig is None else P @ w + (pr.p_bar[j] - P @ (w * pi)) / sig
+                    return pr.fudge.S(A)
 
-            done.terminal = True
-            done.direction = 1
-            res = solve_ivp(sysm.fun, (sysm.t0, sysm.t1), sysm.y0, dense_output=True, events=done, **kw)
-            if not res.success or res.status != 1:
-                raise SolverError(f"mol: solve_ivp failed ({res.message})")
-            # station taus per load: V_j(tau) = V(zeta_k), Newton on the dense output (dV/dtau = 1/S)
-            V_out = np.atleast_1d(pr.V(zeta_out)).astype(float)
-            Vs = res.y[n:]  # (nl, n_steps+1), increasing
-            tau_st = np.empty((n_z, nl))
-            for j in range(nl):
-                tau_st[:, j] = np.interp(V_out, Vs[j], res.t)
-            idx = np.arange(nl)
-
-            def at(tau):  # state at the (n_z, nl) taus: V_j and P_j of each load at its own tau
-                Y = res.sol(tau.ravel()).reshape(n + nl, n_z, nl)
-                Vj = Y[n + idx, :, idx].T  # (n_z, nl)
-                Pj = Y[:n].reshape(nl, m, n_z, nl)[idx, :, :, idx].transpose(2, 0, 1)  # (n_z, nl, m)
-                return Vj, Pj
-
-            for _ in range(20):
-                Vj, Pj = at(tau_st)
-                step = (Vj - V_out[:, None]) * pr.fudge.S(self._area(Pj, w, p[1:-1]))
-                tau_st = np.clip(tau_st - step, res.t[0], res.t[-1])
-                if np.all(np.abs(step) <= 1e-15 * tau_st):
-                    break
-            P = at(tau_st)[1]
-            tau_info = tau_st
-        else:
-            res = solve_ivp(sysm.fun, (sysm.t0, float(t_eval[-1])), sysm.y0, dense_output=True, **kw)
-            if not res.success:
-                raise SolverError(f"mol: solve_ivp failed ({res.message})")
-            Y = res.sol(t_eval)
-            Y[:, -1] = res.y[:, -1]  # the last station is a step point: no interpolation there
-            P = Y.T.reshape(n_z, nl, m)
-            tau_info = t_eval if o["variable"] == "tau" else None
+                tau_st, P, steps = _ivp_march.march_own(
+                    solver, n + np.arange(nl), np.arange(n).reshape(nl, m), V_out, S_of, "mol"
+                )
+                tau_info = tau_st
+            else:
+                Y, steps = _ivp_march.march_shared(solver, t_eval, "mol")
+                P = Y.T.reshape(n_z, nl, m)
+                tau_info = t_eval if o["variable"] == "tau" else None
+        except RuntimeError as err:
+            raise SolverError(f"mol: solve_ivp failed ({err})") from err
 
         P_full = np.zeros((n_z, nl, o["n_p"]))
         P_full[..., 1:-1] = P
@@ -494,11 +480,11 @@ class MethodOfLinesSolver(Solver):
             "order": o["order"],
             "integrator": integ,
             "variable": o["variable"],
-            "nfev": int(res.nfev),
-            "njev": int(res.njev),
-            "nlu": int(res.nlu),
-            "steps": int(res.t.size - 1),
-            "t_span": (sysm.t0, float(res.t[-1])),
+            "nfev": int(solver.nfev),
+            "njev": int(solver.njev),
+            "nlu": int(solver.nlu),
+            "steps": int(steps),
+            "t_span": (sysm.t0, float(solver.t)),
             "tau_out": tau_info,
         }
         wq = quadrature_weights(o["n_p"], h, o["order"])
@@ -513,12 +499,3 @@ class MethodOfLinesSolver(Solver):
         if hard is None:
             return image_pdf(p, p_bar, tau)
         return strip_pdf(p, p_bar, float(hard.sigma(1.0)), tau)
-
-    def _area(self, P, w, pi):
-        """Contact area A_el (+ A_pl = (p_bar - F_el) / sigma with a constant hardness) of P (..., n_loads, m)."""
-        pr = self.problem
-        A = P @ w
-        if pr.hardness is not None:
-            sig = float(pr.hardness.sigma(1.0))
-            A = A + (pr.p_bar - P @ (w * pi)) / sig
-        return A
