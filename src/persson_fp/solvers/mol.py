@@ -74,6 +74,8 @@ from .base import Solver, SolverOutput, check_float, check_int
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
 
 _STIFF = ("BDF", "Radau", "LSODA")
+_LOADS_PER_CHUNK = 1000
+"""Batches above this many loads are solved in chunks (memory of one chunk, time linear in the loads)."""
 _EXPLICIT = ("RK45", "RK23", "DOP853")
 _H_OVER_SIGMA = {2: 0.0085, 4: 0.085}
 """Automatic spacing h / sqrt(tau_first): L1 ~ 5e-6 at the first station on the reference problem."""
@@ -217,7 +219,7 @@ class MethodOfLinesSolver(Solver):
     # -- grid and start ---------------------------------------------------------------------------
     def _grid(self):
         o = self.opts
-        L = self.problem.p_max(o["k_domain"])
+        L = getattr(self, "_p_max_shared", None) or self.problem.p_max(o["k_domain"])
         if o["n_p"] is None:
             tau_first = float(np.min(self.problem.tau(self.zeta_out[0])))
             h = _H_OVER_SIGMA[o["order"]] * np.sqrt(tau_first)
@@ -404,6 +406,8 @@ class MethodOfLinesSolver(Solver):
             atol = o["atol"] if o["atol"] is not None else o["rtol"] * 1e-3
             frac = 0.05 if o["tau0_fraction"] is None else o["tau0_fraction"]
             return moving_wall.solve_lines_cells(self, n, o["rtol"], atol, o["integrator"], frac, o["tol"], o["zeta0"])
+        if pr.n_loads > _LOADS_PER_CHUNK and o["variable"] == "tau":
+            return self._solve_in_chunks()
         sysm = self.system()
         p, h, w = self._grid_cache
         nl, m = sysm.n_loads, sysm.m
@@ -492,6 +496,31 @@ class MethodOfLinesSolver(Solver):
         if pr.hardness is not None:  # the strip's load balance F_el + sigma A_pl = p_bar gives A_pl
             plastic = (pr.p_bar - P_full @ (wq * p)) / float(pr.hardness.sigma(1.0))
         return SolverOutput(p=p, P0=P_full, weights=wq, kind="point", info=info, plastic_area=plastic)
+
+    def _solve_in_chunks(self) -> SolverOutput:
+        """Large batches: the loads in chunks of ``_LOADS_PER_CHUNK`` on the grid of the whole batch.
+
+        Memory stays that of one chunk (~130 MB for 1000 loads at the default grid) and time linear in the
+        number of loads; each chunk meets the tolerances on its own.
+        """
+        pr, o = self.problem, self.opts
+        p, _ = self._grid()  # n_p (automatic: from the whole batch) and p_max of the whole batch
+        outs = []
+        for a in range(0, pr.n_loads, _LOADS_PER_CHUNK):
+            sub = type(self)(pr.with_loads(pr.p_bar[a : a + _LOADS_PER_CHUNK]), zeta_out=self.zeta_out, **o)
+            sub._p_max_shared = float(p[-1])
+            outs.append(sub._solve())
+        first = outs[0]
+        info = dict(first.info)
+        for key in ("nfev", "njev", "nlu", "steps"):
+            info[key] = int(sum(out.info[key] for out in outs))
+        info["zeta0"] = np.concatenate([np.atleast_1d(out.info["zeta0"]) for out in outs])
+        tau = [out.info["tau_out"] for out in outs]
+        info["tau_out"] = np.concatenate(tau, axis=1) if np.ndim(tau[0]) == 2 else tau[0]
+        info["chunks"] = len(outs)
+        plastic = None if first.plastic_area is None else np.concatenate([out.plastic_area for out in outs], axis=1)
+        P0 = np.concatenate([out.P0 for out in outs], axis=1)
+        return SolverOutput(p=first.p, P0=P0, weights=first.weights, kind="point", info=info, plastic_area=plastic)
 
     def _start_pdf(self, p, p_bar, tau):
         """The exact PDF at the start: the image solution, or the strip's with a constant hardness."""
