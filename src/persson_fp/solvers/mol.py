@@ -76,7 +76,8 @@ __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"
 
 _STIFF = ("BDF", "Radau", "LSODA")
 _LOADS_PER_CHUNK = 250
-"""Batches above this many loads are solved in chunks (memory of one chunk, time linear in the loads; 250: ~35 MB at the default grid, no slower than 1000 at once)."""
+"""Batches above this many loads are solved in chunks (memory of one chunk, time linear in the loads);
+250: ~35 MB at the default grid, and no slower than 1000 loads at once (measured)."""
 _EXPLICIT = ("RK45", "RK23", "DOP853")
 _H_OVER_SIGMA = {2: 0.0085, 4: 0.085}
 """Automatic spacing h / sqrt(tau_first): L1 ~ 5e-6 at the first station on the reference problem."""
