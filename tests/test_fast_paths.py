@@ -133,3 +133,10 @@ def test_solve_runs_with_one_blas_thread_and_restores_the_pool():
 def test_blas_threads_is_validated(bad):
     with pytest.raises(ValueError, match="blas_threads"):
         pf.solve(_problem(None, None, 0.5), "sines", blas_threads=bad)
+
+
+def test_exact_tau_at_zeta_max_is_a_writeable_copy():
+    pr = _problem("YP08", None, [0.2, 0.9])
+    t = pf.exact(pr).tau
+    t *= 2.0  # the user's array, not the problem's cache
+    np.testing.assert_allclose(pf.exact(pr).tau, t / 2.0, rtol=1e-15)

@@ -195,7 +195,8 @@ class ExactSolution:
 
     @property
     def tau(self):
-        return self._shape(self._tau)
+        out = self._shape(self._tau)  # at zeta_max a view of the problem's cache: hand out a copy
+        return out.copy() if isinstance(out, np.ndarray) else out
 
     @property
     def contact_area(self):
