@@ -151,3 +151,24 @@ def test_auto_quick(tmp_path):
         assert r["auto_status"] == "ok"
         assert r["auto_L1"] <= r["tol"] and r["auto_area"] <= r["tol"]
         assert r["auto_method"] == ("fv" if r["scene"] == "moving hardness" else "sines")
+
+
+def test_overhead_quick(tmp_path):
+    """The per-call overhead table is written; the ratio to erf is reported, not asserted (no timing tests)."""
+    rows = _module("overhead").main(["--quick", "--output", str(tmp_path)])
+    assert len(_rows(tmp_path / "overhead.csv")) == len(rows) > 10
+    exact = [r for r in rows if r["row"].startswith("pf.exact(problem).contact_area, one scalar")]
+    assert {r["fudge"] for r in exact} == {"none", "YP08"}
+    assert all(r["ratio_to_erf"] > 0 and r["seconds_per_call"] > 0 for r in exact)
+    assert "ratio to erf" in (tmp_path / "overhead.md").read_text()
+
+
+def test_batch_scaling_quick(tmp_path):
+    """Every method answers the batches; the areas agree with pf.exact (times and memory recorded only)."""
+    rows = _module("batch_scaling").main(["--quick", "--output", str(tmp_path)])
+    assert len(_rows(tmp_path / "batch_scaling.csv")) == len(rows) == 12
+    for r in rows:
+        assert r["peak_MB"] >= 0 and r["time_1_thread"] > 0
+        if r["method"] != "exact":
+            # defaults: sines to ~1e-13, fv and mol to their documented ~1e-6 .. 1e-5 in |dA*|
+            assert r["max_area_error"] < 1e-4 and r["default_over_1_thread"] > 0

@@ -105,7 +105,9 @@ _SURFACE_OPTIONS = ("H", "q_l", "q_r", "zeta_max", "rms_slope", "rms_height", "C
 
 
 def _check_combination(args):
-    """Options that would be silently ignored are errors."""
+    """Options that would be silently ignored are errors (for the subcommands that take the problem options)."""
+    if not hasattr(args, "psd_csv"):  # surface, sweep: their own options, checked by their modules
+        return
     if args.psd_csv:
         given = [o for o in _SURFACE_OPTIONS if getattr(args, o) is not None]
         if given:

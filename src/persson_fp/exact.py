@@ -19,6 +19,8 @@ This module imports no solver.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy.integrate import quad_vec
 from scipy.special import erf, erfc
@@ -126,7 +128,8 @@ class ExactSolution:
     """
 
     def __init__(self, problem: ContactProblem, zeta=None):
-        _check_problem(problem)
+        if type(problem) is not ContactProblem:
+            _check_problem(problem)
         if problem.general:
             raise ValueError(
                 "general Fokker-Planck coefficients (B1, B2) have no closed form; solve the problem numerically: "
@@ -138,20 +141,26 @@ class ExactSolution:
                 "solve it numerically: pf.solve(problem, method='fv') (or 'mol')"
             )
         self.problem = problem
-        z = problem.zeta_max if zeta is None else zeta
-        z = as_float_array(z, "zeta")
-        if z.ndim > 1:
-            raise ValueError(f"zeta must be a scalar or a 1-D array, got shape {z.shape}")
-        self._scalar_zeta = z.ndim == 0
-        self._zeta = np.atleast_1d(problem.psd.check_zeta(z))
-        self._V = np.atleast_1d(problem.V(self._zeta))
-        self._tau = problem.tau_of_V(self._V)  # (n_zeta, n_loads)
-        pb = problem.p_bar[None, :]
-        with np.errstate(divide="ignore"):
-            x = np.divide(pb, np.sqrt(2.0 * self._tau), out=np.full(self._tau.shape, np.inf), where=self._tau > 0)
-        self._x = x
+        if zeta is None:
+            # fast path (repeated questions at zeta_max): V(zeta_max) and tau(zeta_max) are cached on the
+            # problem, which validated them once; nothing here depends on new input
+            self._scalar_zeta = True
+            self._zeta = self._V = None  # zeta_max and V_max, read from the problem
+            self._tau = problem.tau_max[None, :]  # (1, n_loads), a read-only view
+            self._tau_positive = problem.V_max > 0.0  # S > 0: tau > 0 exactly where V > 0
+        else:
+            z = as_float_array(zeta, "zeta")
+            if z.ndim > 1:
+                raise ValueError(f"zeta must be a scalar or a 1-D array, got shape {z.shape}")
+            self._scalar_zeta = z.ndim == 0
+            self._zeta = np.atleast_1d(problem.psd.check_zeta(z))
+            self._V = np.atleast_1d(problem.V(self._zeta))
+            self._tau = problem.tau_of_V(self._V)  # (n_zeta, n_loads)
+            self._tau_positive = bool(np.all(self._V > 0.0))
+        self._x = self._A = self._atom = None  # erf / erfc on first use (_areas)
         self._strip = None
         if problem.hardness is not None:  # constant hardness: the strip series (persson_fp.strip)
+            pb = problem.p_bar[None, :]
             sig = float(problem.hardness.sigma(1.0))
             self._sigma = sig
             tau_pos = np.where(self._tau > 0, self._tau, 1.0)
@@ -164,9 +173,18 @@ class ExactSolution:
             self._strip = q
             self._A = q["elastic_area"] + q["plastic_area"]
             self._atom = q["noncontact_area"]
+
+    def _areas(self):
+        """x = p_bar / sqrt(2 tau) and A* = erf(x), computed on first use (x = inf where tau = 0)."""
+        pb = self.problem.p_bar[None, :]
+        if self._tau_positive:
+            x = pb / np.sqrt(2.0 * self._tau)
         else:
+            with np.errstate(divide="ignore"):
+                x = np.divide(pb, np.sqrt(2.0 * self._tau), out=np.full(self._tau.shape, np.inf), where=self._tau > 0)
+        self._x = x
+        if self._strip is None:
             self._A = erf(x)
-            self._atom = erfc(x)
 
     def _shape(self, a):
         if self.problem.scalar_load:
@@ -177,6 +195,8 @@ class ExactSolution:
 
     @property
     def zeta(self):
+        if self._zeta is None:
+            return float(self.problem.zeta_max)
         return self._zeta[0] if self._scalar_zeta else self._zeta.copy()
 
     @property
@@ -185,49 +205,69 @@ class ExactSolution:
 
     @property
     def V(self):
+        if self._V is None:
+            return float(self.problem.V_max)
         return self._V[0] if self._scalar_zeta else self._V.copy()
 
     @property
     def tau(self):
-        return self._shape(self._tau)
+        out = self._shape(self._tau)  # at zeta_max a view of the problem's cache: hand out a copy
+        return out.copy() if isinstance(out, np.ndarray) else out
 
     @property
     def contact_area(self):
+        if self._A is None:
+            if self._scalar_zeta and self.problem.scalar_load:  # one number: math.erf, no array round trip
+                tau = float(self._tau[0, 0])
+                return math.erf(float(self.problem.p_bar[0]) / math.sqrt(2.0 * tau)) if tau > 0 else 1.0
+            self._areas()
         return self._shape(self._A)
 
     @property
     def atom(self):
+        if self._atom is None:  # erfc(x), not 1 - erf(x): full relative accuracy as A* -> 1
+            if self._x is None:
+                self._areas()
+            self._atom = erfc(self._x)
         return self._shape(self._atom)
 
     # -- elastoplastic split (a hardness wall; without one: elastic = contact area, plastic = 0) --------
     @property
     def elastic_area(self):
         """A_el = int_0^sigma_Y P0 dp: the elastically loaded fraction of the nominal area."""
-        return self._shape(self._A if self._strip is None else self._strip["elastic_area"])
+        return self._shape(self._area_array() if self._strip is None else self._strip["elastic_area"])
 
     @property
     def plastic_area(self):
         """A_pl: the fraction in plastic contact (the mass absorbed at the yield wall sigma_Y)."""
-        return self._shape(np.zeros_like(self._A) if self._strip is None else self._strip["plastic_area"])
+        return self._shape(np.zeros(self._tau.shape) if self._strip is None else self._strip["plastic_area"])
 
     @property
     def noncontact_area(self):
         """A_non = 1 - A_el - A_pl: the fraction out of contact (the atom at p = 0)."""
-        return self._shape(self._atom)
+        return self.atom
 
     @property
     def elastic_load(self):
         """F_el = int p P0 dp (pressure): the load carried elastically."""
-        pb = np.broadcast_to(self.problem.p_bar[None, :], self._A.shape)
+        pb = np.broadcast_to(self.problem.p_bar[None, :], self._tau.shape)
         return self._shape(pb.copy() if self._strip is None else self._strip["elastic_load"])
 
     @property
     def plastic_load(self):
         """F_pl = sigma_Y A_pl (pressure); F_el + F_pl = p_bar (``eq:Load_equilibrium``)."""
-        return self._shape(np.zeros_like(self._A) if self._strip is None else self._strip["plastic_load"])
+        return self._shape(np.zeros(self._tau.shape) if self._strip is None else self._strip["plastic_load"])
+
+    def _area_array(self) -> np.ndarray:
+        """A* with both axes kept, shape ``(n_zeta, n_loads)`` (dimensionless)."""
+        if self._A is None:
+            self._areas()
+        return self._A
 
     @property
     def area_asymptote(self):
+        if self._x is None:
+            self._areas()
         with np.errstate(divide="ignore"):
             return self._shape(2.0 / np.sqrt(np.pi) * self._x)
 

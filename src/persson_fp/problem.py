@@ -21,6 +21,24 @@ from .strip import StripEffectiveVariance
 __all__ = ["ContactProblem"]
 
 
+def _check_loads(p_bar) -> np.ndarray:
+    """``p_bar`` as a float array of shape () or (n,), every load finite, > 0 and <= 1e150 (pressure)."""
+    if p_bar is None:
+        raise ValueError("p_bar (nominal pressure, > 0) is required")
+    pb = as_float_array(p_bar, "p_bar")
+    if pb.ndim > 1:
+        raise ValueError(f"p_bar must be a scalar or a 1-D array, got shape {pb.shape}")
+    if pb.size == 0:
+        raise ValueError("p_bar must hold at least one load")
+    if np.any(pb <= 0):
+        raise ValueError(f"p_bar must be > 0 (every load), got {float(pb[pb <= 0].ravel()[0])!r}")
+    if np.any(pb > 1e150):
+        raise ValueError(
+            f"p_bar must be <= 1e150 (p_bar^2 must be representable; rescale units), got {float(pb.max())!r}"
+        )
+    return pb
+
+
 class ContactProblem:
     """Persson's diffusion problem for one surface, one modulus and one or many loads.
 
@@ -79,19 +97,7 @@ class ContactProblem:
             raise ValueError(f"psd must be a SelfAffinePSD or TabulatedPSD, got {type(psd).__name__}")
         self.psd = psd
         self.E_star = as_positive_scalar(E_star, "E_star")
-        if p_bar is None:
-            raise ValueError("p_bar (nominal pressure, > 0) is required")
-        pb = as_float_array(p_bar, "p_bar")
-        if pb.ndim > 1:
-            raise ValueError(f"p_bar must be a scalar or a 1-D array, got shape {pb.shape}")
-        if pb.size == 0:
-            raise ValueError("p_bar must hold at least one load")
-        if np.any(pb <= 0):
-            raise ValueError(f"p_bar must be > 0 (every load), got {float(pb[pb <= 0].ravel()[0])!r}")
-        if np.any(pb > 1e150):
-            raise ValueError(
-                f"p_bar must be <= 1e150 (p_bar^2 must be representable; rescale units), got {float(pb.max())!r}"
-            )
+        pb = _check_loads(p_bar)
         self.scalar_load = pb.ndim == 0
         self.p_bar = np.atleast_1d(pb).astype(float)
         self.p_bar.setflags(write=False)
@@ -122,8 +128,18 @@ class ContactProblem:
         return cls(psd, E_star=1.0, p_bar=ratio * np.sqrt(psd.V(E_star=1.0)), fudge=fudge, hardness=hardness)
 
     def with_loads(self, p_bar) -> ContactProblem:
-        """The same surface and fudge factor with other load(s)."""
-        new = ContactProblem(self.psd, self.E_star, p_bar, self.fudge, self.hardness)
+        """The same surface and fudge factor with other load(s).
+
+        Only the new loads are validated (and the hardness against them): the spectrum, modulus, fudge
+        factor and V(zeta_max) were checked and computed when this problem was built and are reused.
+        """
+        pb = _check_loads(p_bar)
+        if self.hardness is not None:
+            self.hardness.check(self.psd.zeta_max, float(np.max(pb)))
+        state = dict(self.__dict__, scalar_load=pb.ndim == 0, _strip_ev=None, _tau_max=None)
+        state["p_bar"] = np.atleast_1d(pb).astype(float)
+        new = object.__new__(type(self))
+        new.__setstate__(state)  # freezes p_bar
         if self._strip_ev is not None and np.array_equal(new.p_bar, self.p_bar):  # same loads: reuse the tau map
             object.__setattr__(new, "_strip_ev", self._strip_ev)
         return new

@@ -290,7 +290,8 @@ class Solution:
     plastic_area_all : A_pl, the mass absorbed at the yield wall, shape ``(n_zeta, n_loads)``, or None
     sigma_Y : the hardness at the stations (pressure), shape ``(n_zeta,)``, or None
     contact_area_flux_all : A* from the absorbed flux (FV), or None
-    wall_time : seconds spent in the solver (compile time excluded, see ``info``)
+    wall_time : seconds spent in the solver alone (its stepping; validation, building this Solution, its
+        checks and compile time excluded): time the ``pf.solve`` call for the end-to-end cost
     info : grid, steps, rhs calls, options, checks, warnings
     """
 

@@ -83,3 +83,15 @@ def test_import_is_lazy_and_missing_extra_is_named(monkeypatch):
     monkeypatch.setitem(sys.modules, "pde", None)
     with pytest.raises(ImportError, match=r"persson-fp\[pde\]"):
         get_solver("py-pde")
+
+
+def test_compiled_stepper_is_reused_by_an_identical_call():
+    """py-pde freezes grid, time map and S into its stepper; the same call again reuses it (no recompile)."""
+    a = _solve("YP08")
+    b = _solve("YP08")
+    assert b.info["stepper_cached"]
+    np.testing.assert_array_equal(a.P0, b.P0)  # the same compiled stepper from the same start: bitwise
+    # a new grid is a new stepper (numpy backend: nothing to compile, but the same cache rule)
+    c = _solve(None, backend="numpy", n_p=37)
+    assert not c.info["stepper_cached"] and _solve(None, backend="numpy", n_p=37).info["stepper_cached"]
+    assert c.compare().max_L1 < 1e-2  # 37 cells, r = 1/6: L1 ~ 1e-4 against pf.exact

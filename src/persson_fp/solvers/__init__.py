@@ -108,6 +108,7 @@ def solve(
     check: bool = True,
     max_memory: float | None = None,
     max_time: float | None = None,
+    blas_threads: int | None = 1,
     **options,
 ) -> Solution:
     """Solve Persson's diffusion problem numerically and return a :class:`~persson_fp.Solution`.
@@ -136,6 +137,10 @@ def solve(
     max_time : float, optional
         Run-time budget in seconds (default ``solvers.base.TIME_BUDGET``, 1 hour), checked the same way
         for the methods with a time model (fv, chapman-kolmogorov, monte-carlo).
+    blas_threads : int or None, default 1
+        BLAS threads during the solve (through threadpoolctl, when installed).  One by default: the
+        solvers' products are narrow, and a multithreaded BLAS only oversubscribes the cores on them
+        (``benchmarks/batch_scaling.py``); ``None`` leaves the BLAS library's own setting.
     **options
         Shared knobs (``n_p``, ``n_steps``, ``rtol``, ``atol``, ``scheme``) and
         the method's own options (``get_solver(method).OPTIONS``).
@@ -159,16 +164,25 @@ def solve(
     SolverError
         The result breaks an invariant (with ``check=True``).
     """
+    from ._threads import blas_threads as _limit
+    from ._threads import check_blas_threads
+
+    n_threads = check_blas_threads(blas_threads)
     if isinstance(method, str) and method == "auto":
         from .auto import solve_auto
 
-        return solve_auto(problem, zeta_out, 1e-6 if tol is None else tol, **options)
+        with _limit(n_threads):
+            return solve_auto(problem, zeta_out, 1e-6 if tol is None else tol, **options)
     if tol is not None and isinstance(method, str) and method in ("fv", "mol"):
         from .auto import solve_to_tol
         from .base import check_float
 
-        return solve_to_tol(problem, method, zeta_out, check_float(tol, "tol", 0.0, 1e-1), **options)
+        with _limit(n_threads):
+            return solve_to_tol(problem, method, zeta_out, check_float(tol, "tol", 0.0, 1e-1), **options)
     if tol is not None:
         options["tol"] = tol
-    cls = get_solver(method)
-    return cls(problem, zeta_out=zeta_out, check=check, max_memory=max_memory, max_time=max_time, **options).run()
+    solver = get_solver(method)(
+        problem, zeta_out=zeta_out, check=check, max_memory=max_memory, max_time=max_time, **options
+    )
+    with _limit(n_threads):
+        return solver.run()

@@ -58,11 +58,11 @@ grows like n_p^2 (the stability study).
 
 from __future__ import annotations
 
+import gc
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 from scipy.special import erf
 
@@ -70,12 +70,15 @@ from ..exact import image_pdf
 from ..fudge import NoFudge
 from ..solution import SolverError
 from ..strip import strip_pdf
-from . import moving_wall
+from . import _ivp_march, moving_wall
 from .base import _HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
 
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
 
 _STIFF = ("BDF", "Radau", "LSODA")
+_LOADS_PER_CHUNK = 250
+"""Batches above this many loads are solved in chunks (memory of one chunk, time linear in the loads);
+250: ~35 MB at the default grid, and no slower than 1000 loads at once (measured)."""
 _EXPLICIT = ("RK45", "RK23", "DOP853")
 _H_OVER_SIGMA = {2: 0.0085, 4: 0.085}
 """Automatic spacing h / sqrt(tau_first): L1 ~ 5e-6 at the first station on the reference problem."""
@@ -228,7 +231,7 @@ class MethodOfLinesSolver(Solver):
     # -- grid and start ---------------------------------------------------------------------------
     def _grid(self):
         o = self.opts
-        L = self.problem.p_max(o["k_domain"])
+        L = getattr(self, "_p_max_shared", None) or self.problem.p_max(o["k_domain"])
         if o["n_p"] is None:
             tau_first = float(np.min(self.problem.tau(self.zeta_out[0])))
             h = _H_OVER_SIGMA[o["order"]] * np.sqrt(tau_first)
@@ -274,7 +277,7 @@ class MethodOfLinesSolver(Solver):
         pi = p[1:-1]
         w = quadrature_weights(n_p, h, order)[1:-1]
         Lm = laplacian(m, h, order)
-        Lb = sp.block_diag([Lm] * nl, format="csr") if nl > 1 else Lm
+        Lb = sp.kron(sp.identity(nl, format="csr"), Lm, format="csr") if nl > 1 else Lm
         fudge = pr.fudge
         nofudge = isinstance(fudge, NoFudge)
         self._grid_cache = (p, h, w)
@@ -400,6 +403,8 @@ class MethodOfLinesSolver(Solver):
         pr = self.problem
         if isinstance(pr.fudge, NoFudge):
             return np.full(pr.n_loads, tau0)
+        if pr.hardness is None:  # the inverse of the same effective-variance table, all loads at once (~1e-13)
+            return pr.V_of_tau_each(np.full(pr.n_loads, float(tau0)))
         S1 = float(pr.fudge.S(np.array(1.0)))
         out = np.empty(pr.n_loads)
         V_max = float(pr.V(pr.zeta_max))
@@ -424,6 +429,8 @@ class MethodOfLinesSolver(Solver):
             return moving_wall.solve_lines_cells(
                 self, n, o["rtol"], atol, o["integrator"], frac, o["tol"], o["zeta0"], o["k_domain"]
             )
+        if pr.n_loads > _LOADS_PER_CHUNK and o["variable"] == "tau":
+            return self._solve_in_chunks()
         sysm = self.system()
         p, h, w = self._grid_cache
         nl, m = sysm.n_loads, sysm.m
@@ -467,48 +474,33 @@ class MethodOfLinesSolver(Solver):
         if t_eval is not None and t_eval[0] < sysm.t0:
             raise ValueError(f"the start-up ({sysm.t0:.6g}) lies beyond the first output station; lower tau0_fraction")
 
-        if sysm.augmented:
-            V_end = float(pr.V(zeta_out[-1]))
-            n = nl * m
+        # stepped by hand (_ivp_march): no dense output kept, each load's stations on its own rows only
+        method = kw.pop("method")
+        n = nl * m
+        t_end = sysm.t1 if sysm.augmented else float(t_eval[-1])
+        # in tau the Jacobian's P part is one Laplacian block per load, shared: factor it once per step
+        blocks = (nl, m) if o["variable"] == "tau" else None
+        solver = _ivp_march.make_solver(method, sysm.fun, sysm.t0, sysm.y0, t_end, blocks=blocks, **kw)
+        try:
+            if sysm.augmented:
+                V_out = np.atleast_1d(pr.V(zeta_out)).astype(float)
+                pi = p[1:-1]
+                sig = None if pr.hardness is None else float(pr.hardness.sigma(1.0))
 
-            def done(t, y):
-                return float(np.min(y[n:])) - V_end
+                def S_of(P, j):  # S at the area of load j's P (..., m), A_pl from the load balance with a hardness
+                    A = P @ w if sig is None else P @ w + (pr.p_bar[j] - P @ (w * pi)) / sig
+                    return pr.fudge.S(A)
 
-            done.terminal = True
-            done.direction = 1
-            res = solve_ivp(sysm.fun, (sysm.t0, sysm.t1), sysm.y0, dense_output=True, events=done, **kw)
-            if not res.success or res.status != 1:
-                raise SolverError(f"mol: solve_ivp failed ({res.message})")
-            # station taus per load: V_j(tau) = V(zeta_k), Newton on the dense output (dV/dtau = 1/S)
-            V_out = np.atleast_1d(pr.V(zeta_out)).astype(float)
-            Vs = res.y[n:]  # (nl, n_steps+1), increasing
-            tau_st = np.empty((n_z, nl))
-            for j in range(nl):
-                tau_st[:, j] = np.interp(V_out, Vs[j], res.t)
-            idx = np.arange(nl)
-
-            def at(tau):  # state at the (n_z, nl) taus: V_j and P_j of each load at its own tau
-                Y = res.sol(tau.ravel()).reshape(n + nl, n_z, nl)
-                Vj = Y[n + idx, :, idx].T  # (n_z, nl)
-                Pj = Y[:n].reshape(nl, m, n_z, nl)[idx, :, :, idx].transpose(2, 0, 1)  # (n_z, nl, m)
-                return Vj, Pj
-
-            for _ in range(20):
-                Vj, Pj = at(tau_st)
-                step = (Vj - V_out[:, None]) * pr.fudge.S(self._area(Pj, w, p[1:-1]))
-                tau_st = np.clip(tau_st - step, res.t[0], res.t[-1])
-                if np.all(np.abs(step) <= 1e-15 * tau_st):
-                    break
-            P = at(tau_st)[1]
-            tau_info = tau_st
-        else:
-            res = solve_ivp(sysm.fun, (sysm.t0, float(t_eval[-1])), sysm.y0, dense_output=True, **kw)
-            if not res.success:
-                raise SolverError(f"mol: solve_ivp failed ({res.message})")
-            Y = res.sol(t_eval)
-            Y[:, -1] = res.y[:, -1]  # the last station is a step point: no interpolation there
-            P = Y.T.reshape(n_z, nl, m)
-            tau_info = t_eval if o["variable"] == "tau" else None
+                tau_st, P, steps = _ivp_march.march_own(
+                    solver, n + np.arange(nl), np.arange(n).reshape(nl, m), V_out, S_of, "mol"
+                )
+                tau_info = tau_st
+            else:
+                Y, steps = _ivp_march.march_shared(solver, t_eval, "mol")
+                P = Y.T.reshape(n_z, nl, m)
+                tau_info = t_eval if o["variable"] == "tau" else None
+        except RuntimeError as err:
+            raise SolverError(f"mol: solve_ivp failed ({err})") from err
 
         P_full = np.zeros((n_z, nl, o["n_p"]))
         P_full[..., 1:-1] = P
@@ -520,11 +512,11 @@ class MethodOfLinesSolver(Solver):
             "order": o["order"],
             "integrator": integ,
             "variable": o["variable"],
-            "nfev": int(res.nfev),
-            "njev": int(res.njev),
-            "nlu": int(res.nlu),
-            "steps": int(res.t.size - 1),
-            "t_span": (sysm.t0, float(res.t[-1])),
+            "nfev": int(solver.nfev),
+            "njev": int(solver.njev),
+            "nlu": int(solver.nlu),
+            "steps": int(steps),
+            "t_span": (sysm.t0, float(solver.t)),
             "tau_out": tau_info,
         }
         wq = quadrature_weights(o["n_p"], h, o["order"])
@@ -533,18 +525,36 @@ class MethodOfLinesSolver(Solver):
             plastic = (pr.p_bar - P_full @ (wq * p)) / float(pr.hardness.sigma(1.0))
         return SolverOutput(p=p, P0=P_full, weights=wq, kind="point", info=info, plastic_area=plastic)
 
+    def _solve_in_chunks(self) -> SolverOutput:
+        """Large batches: the loads in chunks of ``_LOADS_PER_CHUNK`` on the grid of the whole batch.
+
+        Memory stays that of one chunk (~35 MB for 250 loads at the default grid) and time linear in the
+        number of loads; each chunk meets the tolerances on its own.
+        """
+        pr, o = self.problem, self.opts
+        p, _ = self._grid()  # n_p (automatic: from the whole batch) and p_max of the whole batch
+        outs = []
+        for a in range(0, pr.n_loads, _LOADS_PER_CHUNK):
+            sub = type(self)(pr.with_loads(pr.p_bar[a : a + _LOADS_PER_CHUNK]), zeta_out=self.zeta_out, **o)
+            sub._p_max_shared = float(p[-1])
+            outs.append(sub._solve())
+            del sub
+            gc.collect()  # scipy's OdeSolver holds itself in a cycle (its wrapped fun): free the chunk's arrays now
+        first = outs[0]
+        info = dict(first.info)
+        for key in ("nfev", "njev", "nlu", "steps"):
+            info[key] = int(sum(out.info[key] for out in outs))
+        info["zeta0"] = np.concatenate([np.atleast_1d(out.info["zeta0"]) for out in outs])
+        tau = [out.info["tau_out"] for out in outs]
+        info["tau_out"] = np.concatenate(tau, axis=1) if np.ndim(tau[0]) == 2 else tau[0]
+        info["chunks"] = len(outs)
+        plastic = None if first.plastic_area is None else np.concatenate([out.plastic_area for out in outs], axis=1)
+        P0 = np.concatenate([out.P0 for out in outs], axis=1)
+        return SolverOutput(p=first.p, P0=P0, weights=first.weights, kind="point", info=info, plastic_area=plastic)
+
     def _start_pdf(self, p, p_bar, tau):
         """The exact PDF at the start: the image solution, or the strip's with a constant hardness."""
         hard = self.problem.hardness
         if hard is None:
             return image_pdf(p, p_bar, tau)
         return strip_pdf(p, p_bar, float(hard.sigma(1.0)), tau)
-
-    def _area(self, P, w, pi):
-        """Contact area A_el (+ A_pl = (p_bar - F_el) / sigma with a constant hardness) of P (..., n_loads, m)."""
-        pr = self.problem
-        A = P @ w
-        if pr.hardness is not None:
-            sig = float(pr.hardness.sigma(1.0))
-            A = A + (pr.p_bar - P @ (w * pi)) / sig
-        return A

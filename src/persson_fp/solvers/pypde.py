@@ -48,10 +48,13 @@ The space error is that of 2nd-order finite volumes, :math:`\propto \Delta p^2`.
 time error cancels the leading space error -- and a start from the exact solution at
 tau0 = 0.05 tau_max) give on ``ContactProblem.reference()`` at zeta = 4, 32, 128 (measured, 2-core
 machine): L1 = 6e-8 without a fudge factor (the cancellation is exact for S = 1) and L1 = 5.7e-6,
-``|dA*|`` = 2.9e-6 with "YP08" (the explicit coupling of S(A*) is 1st order: L1 ~ dp^2), in 0.03 s
-of stepping **plus the numba compilation**, which py-pde repeats on every ``pf.solve`` call:
-1.5-3 s when numba is warm, 7-20 s in a fresh process (``info["compile_time"]``, kept out of
-``Solution.wall_time``).  Promised: L1 <= 1e-4.  Halving dp costs 4x the steps and buys 4x
+|dA*| = 2.9e-6 with "YP08" (the explicit coupling of S(A*) is 1st order: L1 ~ dp^2), in 0.03 s
+of stepping **plus the numba compilation** of a stepper in which py-pde freezes the grid, the
+time map V(s) and S: 1.5-3 s when numba is warm, 7-20 s in a fresh process (``info["compile_time"]``,
+kept out of ``Solution.wall_time``).  The compiled stepper is cached in the process (the 16 most
+recent, keyed by exactly what it freezes; ``info["stepper_cached"]``), so repeating a call costs no
+compile, while a new grid, new stations or new loads whose time map differs compile anew.
+Promised: L1 <= 1e-4.  Halving dp costs 4x the steps and buys 4x
 accuracy (n_p=1600: ~1.4e-6 for YP08, 0.3 s).  "scipy" (BDF) is 100x slower here (a Python
 rhs call per evaluation; a dense finite-difference Jacobian with a fudge factor, see
 ``jac_sparsity``) and "runge-kutta" is limited by the space error of its grid.
@@ -70,6 +73,7 @@ References
 from __future__ import annotations
 
 import time
+from collections import OrderedDict
 
 import numpy as np
 
@@ -85,6 +89,17 @@ SOLVERS = ("euler", "runge-kutta", "implicit", "crank-nicolson", "scipy")
 BACKENDS = ("numba", "numpy")
 _FIXED = ("euler", "implicit", "crank-nicolson")
 _S_TABLE = 4097
+_STEPPERS = OrderedDict()
+"""Compiled py-pde steppers of this process, least recently used first: key -> (grid, solver, stepper, S info)."""
+_STEPPER_CACHE_SIZE = 16
+
+
+def _fudge_key(fudge):
+    """What the compiled S depends on: the closed form's parameter, or the tabulated values."""
+    if type(fudge) in (NoFudge, YangPersson, WangMuser):
+        return (type(fudge).__name__, float(getattr(fudge, "gamma", 0.0)))
+    A_tab = np.unique(np.concatenate((np.linspace(0.0, 1.0, _S_TABLE), 1.0 - np.logspace(-14, -2.5, 512))))
+    return ("table", np.asarray(fudge.S(A_tab), dtype=float).tobytes())
 
 
 # -- compiled pieces -------------------------------------------------------------------------------
@@ -315,21 +330,31 @@ class PyPDESolver(Solver):
                 n0 = o["n_steps"] or int(np.ceil((V_st[-1] - V0) / (dp**2 / S_max)))
                 dt = 1.0 / n0
 
-        eq, S_info = _make_pde(pr.fudge, knots, coef, dp, o["backend"])
-        grid = pde.CartesianGrid([[0.0, p_max]], N)
-        state = pde.ScalarField(grid, P_init[0].copy())
-        solver = self._make_pde_solver(pde, eq, peak)
-
         remedy = (
             "raise n_steps (or n_steps=None)"
             if o["solver"] == "euler"
             else "use solver='scipy' or a smaller step (py-pde's implicit schemes are fixed-point iterations)"
         )
-        # -- compile (make_stepper + one warm-up step on a copy), timed apart from the solve
+        # -- compile (make_stepper + one warm-up step on a copy), timed apart from the solve; py-pde freezes
+        # the grid, the time map and S into the compiled stepper, so it is cached under exactly those
         t_c = time.perf_counter()
-        stepper = solver.make_stepper(state, dt=dt)
-        warm = state.copy()
-        self._advance(stepper, warm, float(knots[0]), float(knots[0]) + (1.0 if fixed else 1e-9), remedy)
+        key = self._stepper_key(N, p_max, dt, knots, coef, peak)
+        hit = _STEPPERS.get(key)
+        if hit is None:
+            eq, S_info = _make_pde(pr.fudge, knots, coef, dp, o["backend"])
+            grid = pde.CartesianGrid([[0.0, p_max]], N)
+            state = pde.ScalarField(grid, P_init[0].copy())
+            solver = self._make_pde_solver(pde, eq, peak)
+            stepper = solver.make_stepper(state, dt=dt)
+            warm = state.copy()
+            self._advance(stepper, warm, float(knots[0]), float(knots[0]) + (1.0 if fixed else 1e-9), remedy)
+            _STEPPERS[key] = (grid, solver, stepper, S_info)
+            while len(_STEPPERS) > _STEPPER_CACHE_SIZE:
+                _STEPPERS.pop(next(iter(_STEPPERS)))
+        else:
+            _STEPPERS.move_to_end(key)
+            grid, solver, stepper, S_info = hit
+            state = pde.ScalarField(grid, P_init[0].copy())
         compile_time = time.perf_counter() - t_c
         solver.info["steps"] = 0
         if dt is not None and "dt" in solver.info:
@@ -372,6 +397,7 @@ class PyPDESolver(Solver):
             "backend": o["backend"],
             "steps": int(solver.info.get("steps", 0)),
             "compile_time": compile_time,
+            "stepper_cached": hit is not None,
             "solve_time": solve_time,
             "pypde_version": pde.__version__,
             **S_info,
@@ -388,6 +414,17 @@ class PyPDESolver(Solver):
             np.max(A_ex - np.asarray(ex_end.cdf_contact(np.array([p_max])), float).reshape(m))
         )
         return SolverOutput(p=grid.axes_coords[0].copy(), P0=P_out, weights=np.full(N, dp), kind="cell", info=info)
+
+    def _stepper_key(self, N, p_max, dt, knots, coef, peak):
+        """Everything a compiled stepper freezes: grid, solver and its settings, time map, S."""
+        o = self.opts
+        settings = tuple(o[k] for k in ("solver", "backend", "rtol", "atol", "scipy_method", "jac_sparsity"))
+        return (
+            settings + (o["picard_maxiter"], N, float(p_max), dt, float(peak)),
+            np.asarray(knots, float).tobytes(),
+            np.asarray(coef, float).tobytes(),
+            _fudge_key(self.problem.fudge),
+        )
 
     def _nodes(self, V_st, dp):
         """V at every step node (stations included) and the stations' node indices."""
