@@ -243,11 +243,11 @@ print("all checks passed")
 # * **Fig. 2(b).** The unit pulse at $\bar p$ broadens with $\zeta$ into a bell that is pinned to zero at the wall,
 #   while the atom at $p=0$ grows from 5.35e-11 at $\zeta=1.5$ to 0.6171 at $\zeta_{max}$.
 # * **Solvers at their defaults** (L1 of $P_0$ at $\zeta_{max}$ / $|\Delta A^*|$): `fv` 8.2e-06 / 2.8e-06,
-#   `mol` 2.0e-06 / 4.8e-07, `sines` 3.1e-16 / 0.0e+00 (round-off: exact start, spectral in $p$, exact in $\zeta$),
+#   `mol` 1.8e-06 / 4.6e-07, `sines` 3.1e-16 / 0.0e+00 (round-off: exact start, spectral in $p$, exact in $\zeta$),
 #   `chapman-kolmogorov` 3.9e-08 / 1.6e-08 (the first step from the $\delta$ is exact, later steps carry
 #   the 4th-order cell error). The numerical atoms agree with the exact ones to the same accuracy.
 # * **Error vs $\zeta$.** The worst $L_1$ over 24 stations is 1.0e-02 (`fv`, largest just after its start
 #   $\zeta_0$, where few steps have been taken — its default steps are uniform in $\tau$ and favour $\zeta_{max}$),
-#   6.0e-06 (`mol`), 5.2e-14 (`sines`) and 2.3e-05 (`chapman-kolmogorov`). The grid methods' errors
+#   5.2e-06 (`mol`), 5.2e-14 (`sines`) and 2.3e-05 (`chapman-kolmogorov`). The grid methods' errors
 #   fall as the PDF widens and the grid resolves it better. `sines` is slower with 24 stations down to $\zeta=1.25$ (legend)
 #   than with 4: it sizes its mode count for the narrowest PDF asked for.

@@ -70,7 +70,7 @@ rows = [
         label=r["label"],
         method=r["method"],
         options=ast.literal_eval(r["options"]),
-        time=num(r["wall_time"]),
+        time=num(r["call_time"]),  # the whole pf.solve call
         compile=np.nan_to_num(num(r["compile_time"])),
         L1=num(r["L1"]),
         repeats=int(r["repeats"] or 0),
@@ -100,8 +100,9 @@ print(
 # ## 1. Error against time (committed benchmark)
 #
 # One line per method (coarse → fine along the benchmark's sweep of `n_p`, steps, tolerance or modes); the
-# time is the median of `sol.wall_time` over the repeats — the solver's own time, **compile excluded**. For py-pde the
-# dotted line adds the numba compile that every `pf.solve` call pays. Grey rings: the Pareto front (no other run is
+# time is the median of the whole `pf.solve` call over the repeats (end to end, after a first call; py-pde's
+# compiled stepper is cached by then, so **compile excluded**). For py-pde the dotted line adds the numba compile
+# that the first call of a configuration pays. Grey rings: the Pareto front (no other run is
 # both faster and more accurate), compile excluded. Solid lines: persson-fp's methods; dashed: the generic tools.
 
 
@@ -141,7 +142,7 @@ def draw_committed(ax, fudge, faint=False):
         ax.loglog(front[:, 0], front[:, 1], "o", mfc="none", mec="k", ms=9, label="Pareto front")
     for thr in (1e-3, 1e-5, 1e-7, 1e-10):
         ax.axhline(thr, color="grey", lw=0.5, ls=":")
-    ax.set_xlabel("median wall time per solve [s]")
+    ax.set_xlabel("median time of the pf.solve call [s]")
     ax.grid(True, which="major", alpha=0.3)
     return front
 
@@ -167,8 +168,8 @@ for fz in FUDGES:
 # %% [markdown]
 # ## 2. Time to accuracy (committed table)
 #
-# `speed_accuracy_table.csv`: for each method the fastest run with $L_1\le$ threshold (its median time; in brackets
-# py-pde's compile per call), or the best $L_1$ it reached within the benchmark's budget.
+# `speed_accuracy_table.csv`: for each method the fastest run with $L_1\le$ threshold (the median time of the whole
+# `pf.solve` call; in brackets py-pde's compile, paid by the first call of a configuration), or the best $L_1$ it reached within the benchmark's budget.
 
 # %%
 THRESHOLDS = sorted({float(r["threshold"]) for r in table}, reverse=True)
@@ -201,7 +202,7 @@ for fz in FUDGES:
 # ## 3. Which method for which accuracy
 #
 # Computed here from every committed run (`speed_accuracy.csv`, not only the table's three thresholds): per target, the
-# cheapest run overall with compile time excluded, the cheapest when py-pde's per-call compile is counted, and the
+# cheapest run overall with compile time excluded, the cheapest when py-pde's compile is counted (a first call), and the
 # cheapest general-purpose grid solver (`fv` or `mol`: the ones that take any spectrum, fudge factor and grid).
 # $10^{-10}$ is beyond the committed table; only the runs that reached it count.
 
@@ -242,15 +243,16 @@ for fz in FUDGES:
 # %% [markdown]
 # Reading the guidance: on this problem the sine series is the answer whenever it applies — a few dozen modes reach
 # round-off without a fudge factor; with YP08 its $\tau(\zeta)$ map (a Newton solve on the series' own area) makes it
-# about twice as expensive, still a fraction of a millisecond and the fastest method. Counted honestly (compile included), py-pde never wins. Among the grid solvers,
+# about 1.3x as expensive in the committed run, still a fraction of a millisecond and the fastest method. Counted honestly (compile included), py-pde never wins. Among the grid solvers,
 # `fv` (TR-BDF2 or Crank–Nicolson at coarse accuracy, the explicit $r=1/6$ scheme at high accuracy) beats `mol`
-# at every target; the Chapman–Kolmogorov kernel (a few large, exact steps) is on a par with `fv` without a fudge
-# factor (within a factor of 3 either way), but falls behind `fv` with YP08. (The assert cell at the end checks these statements against the table.)
+# at every target; the Chapman–Kolmogorov kernel (a few large, exact steps) is on a par with or faster than `fv` without a
+# fudge factor (at most 3x slower), but falls behind `fv` with YP08. (The assert cell at the end checks these statements against the table.)
 #
 # ## 4. A live run on this machine
 #
 # A few resolutions of `fv` (TR-BDF2), `mol` (order 4), `sines` and `chapman-kolmogorov`, with the benchmark's own
-# settings; time = median of `sol.wall_time` over 5 repeats; error = `sol.compare()` against `pf.exact`. Drawn over
+# settings; time = median of `sol.wall_time` over 5 repeats (the committed times are whole calls: the
+# live/committed ratio also contains the call's overhead); error = `sol.compare()` against `pf.exact`. Drawn over
 # the committed curves (faint). **Timings on another machine differ** (CPU, BLAS, load — the committed machine was
 # shared with other jobs, ±tens of percent); the errors do not: same settings, same $L_1$.
 
@@ -326,10 +328,12 @@ print(
 #
 # * **py-pde's `euler` is fast — once compiled.** Its default step (cfl = 1/3, i.e. $r=\Delta\tau/(2\Delta p^2)=1/6$)
 #   is the classical case where forward Euler's leading time and space errors cancel: it converges at 4th order at
-#   microseconds per step in compiled numba loops. Compile excluded, it comes within a factor 1.2–5 of `sines` at
-#   $10^{-3}$ and $10^{-5}$ (with YP08 it stalls near $5\cdot10^{-5}$). But py-pde builds and compiles a new stepper on **every** `pf.solve` call, one to three seconds each
-#   (below): counted, it is slower than the fastest persson-fp method at every accuracy — thousands of times slower
-#   than `sines`, 100–1300× slower than `fv`. (fv's explicit fv2 scheme at $r=1/6$ is the same discretisation — the same
+#   microseconds per step in compiled numba loops. Compile excluded, it comes within a factor 7–10 of `sines` at
+#   $10^{-3}$ and $10^{-5}$ end to end (with YP08 it stalls near $5\cdot10^{-5}$). But the first call of a configuration compiles its stepper (seconds, below; persson-fp caches it per process)
+#   : counted, that first call is slower than the fastest persson-fp method at every accuracy —
+#   thousands of times slower than `sines` and `fv`. Repeated calls through `pf.solve` are slower than `sines` too
+#   (persson-fp's set-up around the stepper), while py-pde's compiled stepper alone is about as fast as the sine
+#   series' solver at $10^{-3}$ (`benchmarks/README.md`). (fv's explicit fv2 scheme at $r=1/6$ is the same discretisation — the same
 #   $L_1$ to the digits below — in numpy instead of numba.)
 # * **FiPy pays a large per-step overhead** (it re-assembles and solves a general sparse system every step in Python):
 #   its Crank–Nicolson is second order but hundreds of milliseconds per solve; it reaches $10^{-5}$ only with 800 cells
@@ -350,7 +354,9 @@ for r in euler:
             f"  n_p = {r['options']['n_p']:4d}: L1 {r['L1']:.3e} vs {f['L1']:.3e}; time {ms(r['time'])} "
             f"(+{r['compile']:.2f} s compile) vs {ms(f['time'])}"
         )
-print(f"py-pde compile per call: {compile_lo:.2f}-{compile_hi:.2f} s over {len(pp)} committed runs")
+print(
+    f"py-pde compile (first call of a configuration): {compile_lo:.2f}-{compile_hi:.2f} s over {len(pp)} committed runs"
+)
 vs_fv = [
     with_compile(cheapest(fz, tg, with_compile, lambda r: r["method"] == "py-pde"))
     / cheapest(fz, tg, wall, lambda r: r["method"] == "fv")["time"]
@@ -454,8 +460,8 @@ for (fz, tg), (a, b, _c) in guide.items():  # the prose of section 3
         assert fv_mol["fv"]["time"] < fv_mol["mol"]["time"], (fz, tg)
     if tg in THRESHOLDS:
         ck, fvr = fv_mol["chapman-kolmogorov"]["time"], fv_mol["fv"]["time"]
-        assert (fvr / 3 < ck < 3 * fvr) if fz == "none" else (ck > fvr), (fz, tg)
-assert 50 < min(vs_fv) and max(vs_fv) < 3000  # "100-1300x slower than fv"
+        assert (ck < 3 * fvr) if fz == "none" else (ck > fvr), (fz, tg)
+assert min(vs_fv) > 50  # "a first py-pde call is thousands of times slower than fv"
 assert {r["label"] for r in rows if r["L1"] <= 1e-10} == {"sines"}  # "only the sine series reaches 1e-10"
 assert bench_machine.startswith("vm: x86_64")
 print("all checks passed")
@@ -463,17 +469,19 @@ print("all checks passed")
 # %% [markdown]
 # ## What to take away
 #
-# * **Committed benchmark** (machine: vm: x86_64, 2 cores, Python 3.11.7, numpy 2.4.6, scipy 1.17.1). Without a fudge factor the fastest run to $L_1\le10^{-5}$ is
-#   sines (0.0712 ms, compile excluded); counting py-pde's per-call compile it is sines (0.0712 ms).
-#   py-pde's euler needs 0.308 ms per solve at $10^{-5}$ but 1.43 s with its compile, which it pays on every call
-#   (0.5–3.5 s in the committed runs).
-# * **Highest accuracy.** Only the sine series reaches $L_1\le10^{-10}$: sines in 0.0712 ms without a fudge
-#   factor, sines in 0.126 ms with YP08. Of the general-purpose grid solvers, $10^{-7}$ costs
-#   13 ms (fv explicit fv2 r=1/6) without and 14.4 ms (fv tr-bdf2) with YP08.
-# * **With YP08** the fastest to $10^{-3}$ is sines (0.126 ms) if compile is not counted, sines (0.126 ms)
-#   if it is.
-# * **FiPy** spends about 591× fv's time per Crank–Nicolson step at $n_p=100$ — its per-step overhead, not
-#   its accuracy, rules it out.
-# * **Live** (14 runs of fv, mol, sines and Chapman–Kolmogorov on this machine): the errors reproduce the committed
-#   ones to 6 significant digits (above round-off); the times do not (see the live/committed column above):
-#   another machine, another day — compare ratios within one run, not absolute times across machines.
+# * **Committed benchmark** (machine: vm: x86_64, 2 cores, Python 3.11.7, numpy 2.4.6, scipy 1.17.1; whole `pf.solve` calls, taken under load). Without a fudge
+#   factor the fastest run to $L_1\le10^{-5}$ is sines (0.108 ms, py-pde's compile not counted);
+#   counting it (a first call) it is sines (0.108 ms). py-pde's euler needs 1.02 ms per
+#   call at $10^{-5}$ once its stepper is compiled, 7.1 s on the first call of a configuration
+#   (1.0–35.0 s of compile in the committed runs).
+# * **Highest accuracy.** Only the sine series reaches $L_1\le10^{-10}$: sines in 0.108 ms without a
+#   fudge factor, sines in 0.14 ms with YP08. Of the general-purpose grid solvers, $10^{-7}$ costs
+#   47.8 ms (fv tr-bdf2) without and 63.9 ms (fv tr-bdf2) with YP08.
+# * **With YP08** the fastest to $10^{-3}$ is sines (0.14 ms) if compile is not counted, sines
+#   (0.14 ms) if it is.
+# * **FiPy** spends about 649× fv's time per Crank–Nicolson step at $n_p=100$ — its per-step overhead,
+#   not its accuracy, rules it out.
+# * **Live** (14 runs of fv, mol, sines and Chapman–Kolmogorov on this machine): the errors reproduce the
+#   committed ones to a relative 4e-03 (mol's tolerance now scales with the load); the times do not (see the live/committed column above): another machine,
+#   another day — compare ratios within one run, not absolute times across machines.
+#
