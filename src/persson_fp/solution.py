@@ -483,10 +483,17 @@ class Solution:
         return self.info.get("steps")
 
     # -- comparison ------------------------------------------------------------------------
+    def _exact_zeta(self):
+        """The stations for :func:`persson_fp.exact`: None for the lone default station zeta_max (its V and tau
+        are cached on the problem: the fast path), else the stations."""
+        if self.zeta.size == 1 and self.zeta[0] == self.problem.zeta_max:
+            return None
+        return self.zeta
+
     def exact_on_grid(self, ex=None) -> np.ndarray:
         """The exact P0 on this solution's grid in the same sense (cell averages or point values)."""
         if ex is None:
-            ex = exact(self.problem, self.zeta)
+            ex = exact(self.problem, self._exact_zeta())
         if self.kind == "cell":
             edges = self.info.get("edges")
             if edges is None:
@@ -510,7 +517,7 @@ class Solution:
                 "solution to compare with; the solver's own "
                 "error estimate is in info['error_estimate'] (and the conservation residuals in info['checks'])"
             )
-        ex = exact(self.problem, self.zeta)
+        ex = exact(self.problem, self._exact_zeta())
         shape = (self.zeta.size, self.problem.n_loads)
         A_ex = np.asarray(ex.contact_area).reshape(shape)
         diff = self.P0_all - self.exact_on_grid(ex)
