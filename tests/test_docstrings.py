@@ -20,16 +20,6 @@ docscrape = pytest.importorskip("numpydoc.docscrape")
 # Names whose docstrings are being rewritten on another branch (modules of the elastoplastic engine):
 # strict xfail, so each entry must go as soon as its docstring is complete.
 PENDING = {
-    "ContactProblem.reference",
-    "ContactProblem.with_loads",
-    "ContactProblem.V",
-    "ContactProblem.dV_dzeta",
-    "ContactProblem.tau_of_V",
-    "ContactProblem.tau_of_V_each",
-    "ContactProblem.V_of_tau_each",
-    "ContactProblem.tau",
-    "ContactProblem.B2",
-    "ContactProblem.p_max",
     "ExactSolution.pdf",
     "ExactSolution.cdf_contact",
     "exact",
@@ -44,7 +34,6 @@ PENDING = {
     "Solution.summary",
     "Solution.plot",
     "Comparison.final",
-    "ContactProblem.n_loads",
     "ExactSolution.zeta",
     "ExactSolution.p_bar",
     "ExactSolution.V",
