@@ -20,6 +20,7 @@ This module imports no solver.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.integrate import quad_vec
@@ -28,6 +29,9 @@ from scipy.special import erf, erfc
 from ._validate import as_float_array, as_positive_scalar
 from .problem import ContactProblem
 from .strip import strip_cdf, strip_pdf, strip_quantities
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = [
     "ExactSolution",
@@ -43,12 +47,28 @@ __all__ = [
 _SQRT2PI = np.sqrt(2.0 * np.pi)
 
 
-def image_pdf(p, p_bar, tau) -> np.ndarray:
+def image_pdf(p: ArrayLike, p_bar: ArrayLike, tau: ArrayLike) -> np.ndarray:
     r"""Image solution :math:`\rho(p;\bar p,\tau) - \rho(p;-\bar p,\tau)` for p > 0 (0 for p <= 0).
 
-    Written as :math:`\rho(p;\bar p,\tau)\,(1 - e^{-2p\bar p/\tau})` with ``-expm1``, so it
-    keeps full relative accuracy near p = 0 and for tiny tau and never overflows.
-    All arguments broadcast; ``tau`` must be > 0 (pressure^2).
+    The pressure distribution of Persson's original theory (Xu et al. tutorial, Eq. 'eq:P0_solution'),
+    :math:`\rho` the Gaussian of mean :math:`\pm\bar p` and variance :math:`\tau`; with a fudge factor
+    the same formula at the effective variance (Eq. 'eq:new_B2').  Written as
+    :math:`\rho(p;\bar p,\tau)\,(1 - e^{-2p\bar p/\tau})` with ``-expm1``, so it keeps full relative
+    accuracy near p = 0 and for tiny tau and never overflows.
+
+    Parameters
+    ----------
+    p : float or array_like, pressure
+        Contact pressure(s); broadcast with the other arguments.
+    p_bar : float or array_like, pressure
+        Nominal pressure(s), > 0.
+    tau : float or array_like, pressure^2
+        (Effective) variance(s), > 0 (at tau = 0 the distribution is a delta function).
+
+    Returns
+    -------
+    ndarray, 1/pressure
+        P0 of the broadcast shape of the arguments; 0 where p <= 0.
     """
     p, p_bar, tau = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (p, p_bar, tau)))
     pos = p > 0
@@ -59,8 +79,24 @@ def image_pdf(p, p_bar, tau) -> np.ndarray:
     return np.where(pos, out, 0.0)
 
 
-def area_from_tau(p_bar, tau) -> np.ndarray:
-    """A* = erf(p_bar / sqrt(2 tau)) (``eq:Area_Persson`` at the effective variance), 1 where tau = 0."""
+def area_from_tau(p_bar: ArrayLike, tau: ArrayLike) -> np.ndarray:
+    """Relative contact area A* = erf(p_bar / sqrt(2 tau)) (Xu et al. tutorial, Eq. 'eq:Area_Persson').
+
+    Persson's area at the complete-contact variance tau = V, or, with a fudge factor, at the effective
+    variance tau = int S dV (Eq. 'eq:new_B2').
+
+    Parameters
+    ----------
+    p_bar : float or array_like, pressure
+        Nominal pressure(s), > 0; broadcast with ``tau``.
+    tau : float or array_like, pressure^2
+        (Effective) variance(s), >= 0.
+
+    Returns
+    -------
+    ndarray, dimensionless
+        A* in [0, 1] of the broadcast shape; 1 where tau = 0 (full contact at zeta = 1).
+    """
     p_bar, tau = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(tau, dtype=float))
     x = np.divide(p_bar, np.sqrt(2.0 * tau), out=np.full(p_bar.shape, np.inf), where=tau > 0)
     return erf(x)
@@ -82,14 +118,26 @@ def _check_problem(problem):
         raise ValueError(f"problem must be a ContactProblem, got {type(problem).__name__}")
 
 
-def variance_closed_form(p_bar, tau) -> np.ndarray:
-    r"""Var(p) over the whole interface, atom included: :math:`\int_0^\tau A^*(t)\,dt`.
+def variance_closed_form(p_bar: ArrayLike, tau: ArrayLike) -> np.ndarray:
+    r"""Var(p) over the whole interface, atom at p = 0 included: :math:`\int_0^\tau A^*(t)\,dt`.
 
-    Closed form of ``eq:variance_p_form1`` in the effective variance (for the
+    Closed form of the Xu et al. tutorial's Eq. 'eq:variance_p_form1' in the effective variance (for the
     original theory tau = V):
 
     .. math::  \mathrm{Var} = \tau\,\mathrm{erf}(x) - \bar p^2\,\mathrm{erfc}(x)
                               + \bar p\sqrt{2\tau/\pi}\,e^{-x^2}, \quad x = \bar p/\sqrt{2\tau}.
+
+    Parameters
+    ----------
+    p_bar : float or array_like, pressure
+        Nominal pressure(s), > 0; broadcast with ``tau``.
+    tau : float or array_like, pressure^2
+        (Effective) variance(s), >= 0.
+
+    Returns
+    -------
+    ndarray, pressure^2
+        Var(p) of the broadcast shape; 0 where tau = 0.  The second moment is Var + p_bar^2.
     """
     p_bar, tau = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(tau, dtype=float))
     with np.errstate(divide="ignore", under="ignore"):
@@ -127,7 +175,7 @@ class ExactSolution:
     - ``second_moment``: <p^2> = Var + p_bar^2 (pressure^2).
     """
 
-    def __init__(self, problem: ContactProblem, zeta=None):
+    def __init__(self, problem: ContactProblem, zeta: ArrayLike | None = None):
         if type(problem) is not ContactProblem:
             _check_problem(problem)
         if problem.general:
@@ -194,28 +242,33 @@ class ExactSolution:
         return a if np.ndim(a) else float(a)
 
     @property
-    def zeta(self):
+    def zeta(self) -> float | np.ndarray:
+        """Magnification(s) zeta = q / q_l (dimensionless): a float, or shape ``(n_zeta,)``."""
         if self._zeta is None:
             return float(self.problem.zeta_max)
         return self._zeta[0] if self._scalar_zeta else self._zeta.copy()
 
     @property
-    def p_bar(self):
+    def p_bar(self) -> float | np.ndarray:
+        """Nominal pressure(s) p_bar (pressure): a float for a scalar load, else shape ``(n_loads,)``."""
         return self.problem.p_bar[0] if self.problem.scalar_load else self.problem.p_bar.copy()
 
     @property
-    def V(self):
+    def V(self) -> float | np.ndarray:
+        """Complete-contact variance V(zeta) (pressure^2), Eq. 'eq:Vp_closed_form': a float or ``(n_zeta,)``."""
         if self._V is None:
             return float(self.problem.V_max)
         return self._V[0] if self._scalar_zeta else self._V.copy()
 
     @property
-    def tau(self):
+    def tau(self) -> float | np.ndarray:
+        """Effective variance tau = int S dV (pressure^2, Eq. 'eq:new_B2'); equals V without a fudge factor."""
         out = self._shape(self._tau)  # at zeta_max a view of the problem's cache: hand out a copy
         return out.copy() if isinstance(out, np.ndarray) else out
 
     @property
-    def contact_area(self):
+    def contact_area(self) -> float | np.ndarray:
+        """Relative contact area A* = erf(p_bar / sqrt(2 tau)) (Eq. 'eq:Area_Persson'); A_el + A_pl with a hardness."""
         if self._A is None:
             if self._scalar_zeta and self.problem.scalar_load:  # one number: math.erf, no array round trip
                 tau = float(self._tau[0, 0])
@@ -224,7 +277,8 @@ class ExactSolution:
         return self._shape(self._A)
 
     @property
-    def atom(self):
+    def atom(self) -> float | np.ndarray:
+        """Probability 1 - A* of p = 0, the out-of-contact fraction (Eq. 'eq:PDF_piecewise_explicit'), via erfc."""
         if self._atom is None:  # erfc(x), not 1 - erf(x): full relative accuracy as A* -> 1
             if self._x is None:
                 self._areas()
@@ -265,7 +319,8 @@ class ExactSolution:
         return self._A
 
     @property
-    def area_asymptote(self):
+    def area_asymptote(self) -> float | np.ndarray:
+        """Small-load limit of the area, sqrt(2/pi) p_bar / sqrt(tau) (Xu et al. tutorial, Eq. 'eq:Asymptote_1')."""
         if self._x is None:
             self._areas()
         with np.errstate(divide="ignore"):
@@ -282,14 +337,31 @@ class ExactSolution:
         return self._shape(self._second_moment() - self.problem.p_bar**2)
 
     @property
-    def second_moment(self):
+    def second_moment(self) -> float | np.ndarray:
+        """Second moment <p^2> = Var(p) + p_bar^2 (pressure^2, Eq. 'eq:variance_p_form1'), atoms included."""
         return self._shape(self._second_moment())
 
-    def pdf(self, p) -> np.ndarray:
-        """P0(p) (1/pressure) of the continuous part, ``eq:P0_solution`` at tau.
+    def pdf(self, p: ArrayLike) -> np.ndarray:
+        """Continuous part P0(p) of the pressure distribution (Xu et al. tutorial, Eq. 'eq:P0_solution' at tau).
 
-        Returns shape ``(n_zeta, n_loads) + p.shape`` with scalar zeta/load axes
-        dropped.  At zeta = 1 P0 is a delta function: a ``ValueError`` says so.
+        The image solution (:func:`image_pdf`) at the effective variance tau; with a constant hardness the
+        strip series of :mod:`persson_fp.strip` on [0, sigma_Y].  The atom at p = 0 (:attr:`atom`) is not
+        part of it (Eq. 'eq:PDF_piecewise_explicit').
+
+        Parameters
+        ----------
+        p : float or array_like, pressure
+            Contact pressure(s), finite; P0 = 0 for p <= 0.
+
+        Returns
+        -------
+        ndarray, 1/pressure
+            P0 of shape ``(n_zeta, n_loads) + p.shape`` with a scalar zeta's or a scalar load's axis dropped.
+
+        Raises
+        ------
+        ValueError
+            A non-finite or non-real ``p``; zeta = 1, where P0 is the delta function delta(p - p_bar).
         """
         p = as_float_array(p, "p")
         if np.any(self._tau <= 0):
@@ -306,8 +378,27 @@ class ExactSolution:
             out = out[0]
         return out
 
-    def cdf_contact(self, p) -> np.ndarray:
-        r""":math:`\int_0^p P_0\,dp'` (dimensionless), same shape rules as :meth:`pdf`."""
+    def cdf_contact(self, p: ArrayLike) -> np.ndarray:
+        r"""Contact area at pressures up to p, :math:`\int_0^p P_0\,dp'` (Xu et al. tutorial, Eq. 'eq:Area').
+
+        In closed form through erf (Eq. 'eq:P0_solution'); it tends to the elastic area A_el as p grows
+        (A* without a hardness).  Cell averages of P0 are differences of it.
+
+        Parameters
+        ----------
+        p : float or array_like, pressure
+            Upper limit(s), finite; values below 0 count as 0.
+
+        Returns
+        -------
+        ndarray, dimensionless
+            The integral, same shape rules as :meth:`pdf`.
+
+        Raises
+        ------
+        ValueError
+            A non-finite or non-real ``p``; zeta = 1, where P0 is the delta function delta(p - p_bar).
+        """
         p = np.maximum(as_float_array(p, "p"), 0.0)
         if np.any(self._tau <= 0):
             raise ValueError("P0 at zeta = 1 is the delta function delta(p - p_bar); ask for zeta > 1")
@@ -349,23 +440,62 @@ class ExactSolution:
         return html_table("persson-fp ExactSolution (closed form)", rows)
 
 
-def exact(problem: ContactProblem, zeta=None) -> ExactSolution:
-    """The exact solution of ``problem`` at ``zeta`` (scalar or 1-D, default ``zeta_max``).
+def exact(problem: ContactProblem, zeta: ArrayLike | None = None) -> ExactSolution:
+    """The exact solution of ``problem`` at magnification(s) ``zeta``.
 
-    See :class:`ExactSolution`.  Microseconds per (zeta, load) once the
-    fudge factor's effective-variance map is cached.
+    Persson's closed form (Xu et al. tutorial, Eq. 'eq:P0_solution', Eq. 'eq:Area_Persson'), at the
+    effective variance with a fudge factor (Eq. 'eq:new_B2') and as the strip series with a constant
+    hardness.  Microseconds per (zeta, load) once the fudge factor's effective-variance map is cached.
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        The problem; not one with a scale-dependent hardness (moving wall) or general coefficients.
+    zeta : float or 1-D array, dimensionless, optional
+        Magnification(s) in [1, zeta_max]; default ``zeta_max``.
+
+    Returns
+    -------
+    ExactSolution
+        Areas, variances and the distribution P0 (see :class:`ExactSolution`).
+
+    Raises
+    ------
+    ValueError
+        ``problem`` not a :class:`ContactProblem` or without a closed form; ``zeta`` not finite, of more
+        than one dimension or outside [1, zeta_max].
     """
     return ExactSolution(problem, zeta)
 
 
-def pressure_spectrum(problem: ContactProblem, q, A_n: float = 1.0) -> np.ndarray:
-    r""":math:`|\tilde p(q)|^2` of ``eq:Pf_prime`` (pressure^2 length^4 / (2 pi)^2, in the units of the Xu et al.
-    tutorial's Fourier transform).
+def pressure_spectrum(problem: ContactProblem, q: ArrayLike, A_n: float = 1.0) -> np.ndarray | float:
+    r"""Power spectrum of the contact pressure, :math:`|\tilde p(q)|^2` (Xu et al. tutorial, Eq. 'eq:Pf_prime').
 
     .. math::  |\tilde p(q)|^2 = \Big(\frac{E^*}{4\pi}\Big)^2 A_n\, q^2 C(q)\, A^*(\bar p, q/q_l)\, S(A^*)
 
-    with S = 1 in the original theory.  ``A_n`` is the nominal area (length^2).
-    Returns shape ``q.shape + (n_loads,)`` (load axis dropped for a scalar load).
+    with S = 1 in the original theory and A* the model's area at magnification q / q_l
+    (Eq. 'eq:Area_Persson' at the effective variance).
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        Spectrum C(q), modulus, load(s) and fudge factor.
+    q : float or array_like, 1/length
+        Wavenumber(s) in [q_l, q_s].
+    A_n : float, length^2
+        Nominal contact area, > 0.
+
+    Returns
+    -------
+    ndarray or float, pressure^2 length^4 / (2 pi)^2
+        In the units of the Xu et al. tutorial's Fourier transform; shape ``q.shape + (n_loads,)``, the load
+        axis dropped for a scalar load.
+
+    Raises
+    ------
+    ValueError
+        ``problem`` not a :class:`ContactProblem`, ``A_n`` not a finite number > 0, ``q`` not finite or
+        q / q_l outside [1, zeta_max].
     """
     _check_problem(problem)
     A_n = as_positive_scalar(A_n, "A_n")
@@ -379,18 +509,38 @@ def pressure_spectrum(problem: ContactProblem, q, A_n: float = 1.0) -> np.ndarra
     return out[..., 0] if problem.scalar_load else out
 
 
-def elastic_energy(problem: ContactProblem, zeta=None, epsrel: float = 1e-10) -> np.ndarray:
-    r"""Elastic energy per nominal area :math:`U_{el}/A_n` (pressure x length), ``eq:Uel_original``.
+def elastic_energy(problem: ContactProblem, zeta: float | None = None, epsrel: float = 1e-10) -> np.ndarray | float:
+    r"""Elastic energy per nominal area :math:`U_{el}/A_n` (Xu et al. tutorial, Eq. 'eq:Uel_original').
 
     .. math::  \frac{U_{el}}{A_n} = \frac{\pi E^*}{2}\int_{q_l}^{\zeta q_l}
                q^2 C(q)\, A^*(\bar p, q/q_l)\, S(A^*)\,dq
 
     (the Xu et al. tutorial writes the total energy with the factor :math:`A_n`; multiply by
     it for a finite patch).  S = 1 in the original theory; the corrected models
-    carry S(A*) as in Yang & Persson (2008).  A* comes from the model in use at
-    each q.  Adaptive quadrature in ln q (``scipy.integrate.quad_vec``), split at
-    the roll-off, vectorised over loads, relative tolerance ``epsrel`` in (0, 0.1].
-    ``zeta`` is one magnification (scalar), default ``zeta_max``.
+    carry S(A*) as in Yang & Persson (J. Phys.: Condens. Matter 20 (2008) 215214).  A* comes from the model
+    in use at each q (Eq. 'eq:Area_Persson' at the effective variance).  Adaptive quadrature in ln q
+    (``scipy.integrate.quad_vec``), split at the roll-off (and a tabulated spectrum's knots), vectorised
+    over loads.
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        Spectrum, modulus, load(s) and fudge factor.
+    zeta : float, dimensionless, optional
+        One magnification in [1, zeta_max] (the upper limit of the integral); default ``zeta_max``.
+    epsrel : float, dimensionless
+        Relative tolerance of the quadrature, in (0, 0.1].
+
+    Returns
+    -------
+    ndarray or float, pressure x length
+        :math:`U_{el}/A_n`, shape ``(n_loads,)``, a float for a scalar load; 0 at zeta = 1.
+
+    Raises
+    ------
+    ValueError
+        ``problem`` not a :class:`ContactProblem`, ``epsrel`` outside (0, 0.1], ``zeta`` not a scalar or
+        outside [1, zeta_max].
     """
     _check_problem(problem)
     psd = problem.psd

@@ -8,6 +8,8 @@ of the fudge-factor theory, and how large a pressure domain must be.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from scipy.special import erf
 
@@ -17,6 +19,14 @@ from ._validate import as_float_array, as_positive_scalar
 from .effective import effective_variance
 from .spectrum import PSD, SelfAffinePSD
 from .strip import StripEffectiveVariance
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from numpy.typing import ArrayLike
+
+    from .fudge import FudgeFactor
+    from .hardness import Hardness
 
 __all__ = ["ContactProblem"]
 
@@ -118,20 +128,74 @@ class ContactProblem:
 
     # -- construction helpers ---------------------------------------------------
     @classmethod
-    def reference(cls, fudge=None, p_bar_ratio=0.5, H: float = 0.8, zeta_max: float = 128.0, hardness=None):
-        """The reference problem of the tests and benchmarks: H = 0.8, q_l = 1, q_r = 2, q_s = ``zeta_max``,
-        rms slope 0.1, E* = 1 and p_bar = ``p_bar_ratio`` * sqrt(V(zeta_max)); ``hardness`` as in the class."""
+    def reference(
+        cls,
+        fudge: str | FudgeFactor | Callable | None = None,
+        p_bar_ratio: ArrayLike = 0.5,
+        H: float = 0.8,
+        zeta_max: float = 128.0,
+        hardness: float | Hardness | Callable | None = None,
+    ) -> ContactProblem:
+        """The reference problem of the tests, benchmarks and notebooks.
+
+        A self-affine spectrum (:meth:`~persson_fp.SelfAffinePSD.from_rms_slope`) with rms slope 0.1, Hurst
+        exponent ``H``, q_l = 1, roll-off q_r = 2 and cut-off q_s = ``zeta_max`` (inverse length), E* = 1,
+        and the load(s) p_bar = ``p_bar_ratio`` x sqrt(V(zeta_max)) (Xu et al. tutorial,
+        Eq. 'eq:Vp_closed_form'): in the original theory the contact area at zeta_max is
+        erf(``p_bar_ratio`` / sqrt(2)) (Eq. 'eq:Area_Persson').
+
+        Parameters
+        ----------
+        fudge : None, str, FudgeFactor or callable, optional
+            The fudge factor S(A) (Eq. 'eq:new_B2'), as in :class:`ContactProblem`; ``None``: Persson's
+            original theory.
+        p_bar_ratio : float or 1-D array, dimensionless
+            Load(s) in units of sqrt(V(zeta_max)), each > 0; an array gives a batch of loads.
+        H : float, dimensionless
+            Hurst exponent in [0, 1].
+        zeta_max : float, dimensionless
+            Largest magnification q_s / q_l, >= 2 (the roll-off is at zeta = 2).
+        hardness : None, float, Hardness or callable, pressure, optional
+            Yield stress sigma_Y capping the contact pressure, as in :class:`ContactProblem`.
+
+        Returns
+        -------
+        ContactProblem
+            The problem, E* = 1 (so pressures are in units of E*, lengths in units of 1 / q_l).
+
+        Raises
+        ------
+        ValueError
+            ``p_bar_ratio`` not a number > 0 or a non-empty 1-D array of them, ``H`` or ``zeta_max`` out of
+            range (from :class:`~persson_fp.SelfAffinePSD`), or a hardness below a load.
+        """
         psd = SelfAffinePSD.from_rms_slope(0.1, H=H, q_l=1.0, q_r=2.0, q_s=zeta_max)
         ratio = as_float_array(p_bar_ratio, "p_bar_ratio")
         if ratio.ndim > 1 or ratio.size == 0 or np.any(ratio <= 0):
             raise ValueError(f"p_bar_ratio must be a number > 0 or a non-empty 1-D array of them, got {p_bar_ratio!r}")
         return cls(psd, E_star=1.0, p_bar=ratio * np.sqrt(psd.V(E_star=1.0)), fudge=fudge, hardness=hardness)
 
-    def with_loads(self, p_bar) -> ContactProblem:
-        """The same surface and fudge factor with other load(s).
+    def with_loads(self, p_bar: ArrayLike) -> ContactProblem:
+        """The same surface, modulus, fudge factor and hardness with other load(s).
 
         Only the new loads are validated (and the hardness against them): the spectrum, modulus, fudge
         factor and V(zeta_max) were checked and computed when this problem was built and are reused.
+
+        Parameters
+        ----------
+        p_bar : float or 1-D array, pressure
+            Nominal pressure(s), each > 0 and <= 1e150; an array is a batch of loads.
+
+        Returns
+        -------
+        ContactProblem
+            A new (immutable) problem; this one is unchanged.
+
+        Raises
+        ------
+        ValueError
+            ``p_bar`` missing, not > 0, not finite, of more than one dimension or empty, or above a
+            hardness sigma_Y at zeta = 1.
         """
         pb = _check_loads(p_bar)
         if self.hardness is not None:
@@ -157,10 +221,30 @@ class ContactProblem:
 
     @property
     def n_loads(self) -> int:
+        """Number of loads p_bar (1 for a scalar load): the length of every result's load axis."""
         return self.p_bar.size
 
-    def V(self, zeta=None) -> np.ndarray:
-        """Complete-contact pressure variance V(zeta) (pressure^2), ``eq:Vp_closed_form``."""
+    def V(self, zeta: ArrayLike | None = None) -> np.ndarray:
+        """Complete-contact pressure variance V(zeta) (Xu et al. tutorial, Eq. 'eq:Vp_closed_form').
+
+        V(zeta) = (pi / 2) E*^2 int_{q_l}^{zeta q_l} q^3 C(q) dq, the variance of the pressure if the
+        surfaces were in full contact at magnification zeta (Eq. 'eq:VV_relation').
+
+        Parameters
+        ----------
+        zeta : float or array_like, dimensionless, optional
+            Magnification(s) in [1, zeta_max]; default ``zeta_max`` (the cached value).
+
+        Returns
+        -------
+        ndarray, pressure^2
+            V of the shape of ``zeta`` (0-d for a scalar or the default).
+
+        Raises
+        ------
+        ValueError
+            ``zeta`` not finite or outside [1, zeta_max].
+        """
         if zeta is None:
             return np.array(self._V_max)
         return self.psd.V(zeta, self.E_star)
@@ -179,22 +263,77 @@ class ContactProblem:
             object.__setattr__(self, "_tau_max", t)
         return self._tau_max
 
-    def dV_dzeta(self, zeta=None) -> np.ndarray:
-        """dV/dzeta (pressure^2), ``eq:dVdxi``; B2 of the original theory (``eq:B2_xi_1``)."""
+    def dV_dzeta(self, zeta: ArrayLike | None = None) -> np.ndarray:
+        """Derivative dV/dzeta of the complete-contact variance (Xu et al. tutorial, Eq. 'eq:dVdxi').
+
+        It is the diffusion coefficient B2 of Persson's original theory (Eq. 'eq:B2_xi_1'):
+        dV/dzeta = (pi / 2) E*^2 q_l^4 zeta^3 C(zeta q_l).
+
+        Parameters
+        ----------
+        zeta : float or array_like, dimensionless, optional
+            Magnification(s) in [1, zeta_max]; default ``zeta_max``.
+
+        Returns
+        -------
+        ndarray, pressure^2
+            dV/dzeta of the shape of ``zeta``.
+
+        Raises
+        ------
+        ValueError
+            ``zeta`` not finite or outside [1, zeta_max].
+        """
         return self.psd.dV_dzeta(zeta, self.E_star)
 
-    def tau_of_V(self, V) -> np.ndarray:
-        """Effective variance tau (pressure^2) at complete-contact variance(s) ``V``, for every load.
+    def tau_of_V(self, V: ArrayLike) -> np.ndarray:
+        """Effective variance tau at complete-contact variance(s) ``V``, for every load.
 
-        Returns shape ``V.shape + (n_loads,)``.  For the original theory tau = V;
-        for Xu24 the closed form tau = g(A*) V; otherwise the cached ODE of
-        :mod:`persson_fp.effective`.
+        With a fudge factor S(A) (Xu et al. tutorial, Eq. 'eq:new_B2') the diffusion runs on the clock
+        tau = int S(A*) dV, and the closed forms of the original theory (Eq. 'eq:P0_solution',
+        Eq. 'eq:Area_Persson') hold with V replaced by tau.  For the original theory tau = V; for Xu24 the
+        closed form tau = g(A*) V; otherwise the cached ODE of :mod:`persson_fp.effective` (with a constant
+        hardness, the strip map of :mod:`persson_fp.strip`).
+
+        Parameters
+        ----------
+        V : float or array_like, pressure^2
+            Complete-contact variance(s), each >= 0.
+
+        Returns
+        -------
+        ndarray, pressure^2
+            tau of shape ``V.shape + (n_loads,)``.
+
+        Raises
+        ------
+        ValueError
+            A negative or NaN ``V``; a fudge factor with a scale-dependent hardness (no closed-form map).
         """
         V = np.asarray(V, dtype=float)[..., None]
         return self.tau_of_V_each(np.broadcast_to(V, V.shape[:-1] + (self.n_loads,)))
 
-    def tau_of_V_each(self, V) -> np.ndarray:
-        """tau (pressure^2) at one complete-contact variance per load: ``V`` has shape (..., n_loads), V >= 0."""
+    def tau_of_V_each(self, V: ArrayLike) -> np.ndarray:
+        """Effective variance tau at one complete-contact variance per load.
+
+        The map of :meth:`tau_of_V` (tau = int S(A*) dV, Xu et al. tutorial, Eq. 'eq:new_B2'), applied
+        load by load: the last axis of ``V`` runs over the loads.
+
+        Parameters
+        ----------
+        V : array_like, pressure^2
+            Complete-contact variances of shape ``(..., n_loads)``, each >= 0.
+
+        Returns
+        -------
+        ndarray, pressure^2
+            tau of the shape of ``V``.
+
+        Raises
+        ------
+        ValueError
+            A negative or NaN ``V``; a fudge factor with a scale-dependent hardness (no closed-form map).
+        """
         V = np.asarray(V, dtype=float)
         if not np.all(V >= 0.0):  # (NaN fails too)
             raise ValueError("V must be >= 0 (a complete-contact pressure variance), got a negative value or NaN")
@@ -207,10 +346,28 @@ class ContactProblem:
             return self.fudge.g(A) * V
         return effective_variance(self.fudge).tau(self.p_bar, V)
 
-    def V_of_tau_each(self, tau) -> np.ndarray:
-        """The inverse of :meth:`tau_of_V_each`: V (pressure^2) at one effective variance per load,
-        ``tau`` of shape (..., n_loads).  Xu24 in closed form, V = tau / g(A*) with A* = erf(p_bar / sqrt(2 tau));
-        the ODE models through the inverse of the same table."""
+    def V_of_tau_each(self, tau: ArrayLike) -> np.ndarray:
+        """The inverse of :meth:`tau_of_V_each`: the complete-contact variance at one effective variance per load.
+
+        Xu24 in closed form, V = tau / g(A*) with A* = erf(p_bar / sqrt(2 tau)) (Xu et al. tutorial,
+        Eq. 'eq:Area_Persson' at the effective variance); the ODE models through the inverse of the same
+        table (:mod:`persson_fp.effective`); the original theory V = tau.
+
+        Parameters
+        ----------
+        tau : array_like, pressure^2
+            Effective variances of shape ``(..., n_loads)``, each >= 0.
+
+        Returns
+        -------
+        ndarray, pressure^2
+            V of the shape of ``tau``.
+
+        Raises
+        ------
+        ValueError
+            A negative or NaN ``tau``; a fudge factor with a scale-dependent hardness (no closed-form map).
+        """
         tau = np.asarray(tau, dtype=float)
         if not np.all(tau >= 0.0):  # (NaN fails too)
             raise ValueError("tau must be >= 0 (an effective pressure variance), got a negative value or NaN")
@@ -269,20 +426,75 @@ class ContactProblem:
             object.__setattr__(self, "_strip_ev", ev)
         return self._strip_ev
 
-    def tau(self, zeta=None) -> np.ndarray:
-        """Effective variance tau(zeta) = int S dV (pressure^2), shape ``zeta.shape + (n_loads,)``."""
+    def tau(self, zeta: ArrayLike | None = None) -> np.ndarray:
+        """Effective variance tau(zeta) = int_1^zeta S(A*) dV (Xu et al. tutorial, Eq. 'eq:new_B2').
+
+        Equal to V(zeta) (Eq. 'eq:Vp_closed_form') in the original theory; see :meth:`tau_of_V`.
+
+        Parameters
+        ----------
+        zeta : float or array_like, dimensionless, optional
+            Magnification(s) in [1, zeta_max]; default ``zeta_max`` (the cached value, a copy).
+
+        Returns
+        -------
+        ndarray, pressure^2
+            tau of shape ``zeta.shape + (n_loads,)``; ``(n_loads,)`` by default.
+
+        Raises
+        ------
+        ValueError
+            ``zeta`` not finite or outside [1, zeta_max].
+        """
         if zeta is None:
             return self.tau_max.copy()
         return self.tau_of_V(self.V(zeta))
 
-    def B2(self, zeta, A) -> np.ndarray:
-        """Diffusion coefficient B2 = S(A*) dV/dzeta (``eq:new_B2``) for the current area(s) ``A``."""
+    def B2(self, zeta: ArrayLike, A: ArrayLike) -> np.ndarray:
+        """Diffusion coefficient B2 = S(A*) dV/dzeta (Xu et al. tutorial, Eq. 'eq:new_B2').
+
+        Without a fudge factor S = 1 and B2 = dV/dzeta (Eq. 'eq:B2_xi_1').
+
+        Parameters
+        ----------
+        zeta : float or array_like, dimensionless
+            Magnification(s) in [1, zeta_max].
+        A : float or array_like, dimensionless
+            The current contact area(s) A* in [0, 1] at which S is evaluated; broadcast against
+            ``dV_dzeta(zeta)``.
+
+        Returns
+        -------
+        ndarray, pressure^2
+            B2, the broadcast shape of ``A`` and ``zeta``.
+
+        Raises
+        ------
+        ValueError
+            ``zeta`` not finite or outside [1, zeta_max].
+        """
         return self.fudge.S(A) * self.dV_dzeta(zeta)
 
     def p_max(self, k: float = 10.0) -> float:
-        """Far end of a pressure grid: max(p_bar) + k sqrt(tau(zeta_max)) (pressure); sigma_Y for a constant hardness.
+        """Far end of a pressure grid: max(p_bar + k sqrt(tau(zeta_max))); sigma_Y for a constant hardness.
 
-        With k = 10 the image solution there is below exp(-50) of its peak.
+        With k = 10 the image solution (Xu et al. tutorial, Eq. 'eq:P0_solution') there is below exp(-50)
+        of its peak, so a grid cut there loses no mass to double precision.
+
+        Parameters
+        ----------
+        k : float, dimensionless
+            Width in standard deviations sqrt(tau(zeta_max)) beyond the largest load, > 0.
+
+        Returns
+        -------
+        float, pressure
+            The end of the domain (the yield stress sigma_Y with a constant hardness: the wall is the end).
+
+        Raises
+        ------
+        ValueError
+            ``k`` not a finite number > 0.
         """
         k = as_positive_scalar(k, "k")
         if self.hardness is not None and self.hardness.is_constant:

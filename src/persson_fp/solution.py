@@ -15,11 +15,19 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .exact import exact
 from .problem import ContactProblem
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike
+
+    from .exact import ExactSolution
 
 __all__ = ["Solution", "Comparison", "SolverError", "InstabilityError", "check_invariants", "DEFAULT_TOLERANCES"]
 
@@ -182,19 +190,35 @@ def _where(sol):
 class Comparison:
     """Errors of a :class:`Solution` against the exact solution, per station and load.
 
-    Arrays have shape ``(n_zeta, n_loads)``.
+    Made by :meth:`Solution.compare` against :func:`persson_fp.exact` (Xu et al. tutorial,
+    Eq. 'eq:P0_solution' and Eq. 'eq:Area_Persson').  Arrays have shape ``(n_zeta, n_loads)``.
 
     Attributes
     ----------
-    L1 : int ``|P0 - P0_exact|`` dp (dimensionless)
-    Linf : max ``|P0 - P0_exact|`` (1/pressure)
-    area_error : ``|A*_num - A*_exact|``
-    area_error_rel : ``|A*_num - A*_exact| / A*_exact`` (shows the failures at tiny loads, where A* ~ p_bar)
-    load_drift : ``|int p P0 dp - p_bar|`` / p_bar
-    mass_balance : ``|A*(integral) - A*(boundary flux)|`` where the method tracks the flux, else NaN
-    reference : "cell averages" or "point values" -- what the numerical P0 was compared with
-    elastic_area_error, plastic_area_error, noncontact_area_error : ``|A_el - exact|``, ``|A_pl - exact|``,
-        ``|A_non - exact|`` (with a hardness wall; else None)
+    zeta : ndarray, dimensionless
+        The output stations, shape ``(n_zeta,)``.
+    p_bar : ndarray, pressure
+        The loads, shape ``(n_loads,)``.
+    L1 : ndarray, dimensionless
+        ``int |P0 - P0_exact| dp`` on the solution's grid.
+    Linf : ndarray, 1/pressure
+        ``max |P0 - P0_exact|`` over the grid.
+    area_error : ndarray, dimensionless
+        ``|A*_num - A*_exact|`` (Eq. 'eq:Area').
+    load_drift : ndarray, dimensionless
+        ``|int p P0 dp - p_bar| / p_bar`` (Eq. 'eq:Load_equilibrium').
+    mass_balance : ndarray, dimensionless
+        ``|A*(integral) - A*(boundary flux)|`` where the method tracks the flux, else NaN.
+    reference : str
+        "cell averages" or "point values": what the numerical P0 was compared with.
+    stderr_area : ndarray or None, dimensionless
+        Standard error of A* (stochastic methods), else None.
+    elastic_area_error, plastic_area_error, noncontact_area_error : ndarray or None, dimensionless
+        ``|A_el - exact|``, ``|A_pl - exact|``, ``|A_non - exact|`` with a hardness wall; else None.
+    area_error_rel : ndarray or None, dimensionless
+        ``|A*_num - A*_exact| / A*_exact`` (shows the failures at tiny loads, where A* ~ p_bar).
+    stderr_load : ndarray or None, pressure
+        Standard error of the load estimate (stochastic methods), else None.
     """
 
     zeta: np.ndarray
@@ -214,10 +238,12 @@ class Comparison:
 
     @property
     def max_L1(self) -> float:
+        """Largest L1 error of P0 over stations and loads (dimensionless)."""
         return float(np.max(self.L1))
 
     @property
     def max_area_error(self) -> float:
+        """Largest ``|A*_num - A*_exact|`` over stations and loads (dimensionless)."""
         return float(np.max(self.area_error))
 
     @property
@@ -237,8 +263,16 @@ class Comparison:
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(self.area_error == 0, 0.0, self.area_error / se)
 
-    def final(self) -> dict:
-        """Worst case over loads at the last station, as plain floats."""
+    def final(self) -> dict[str, float]:
+        """Worst case over loads at the last station, as plain floats.
+
+        Returns
+        -------
+        dict of str to float
+            ``"L1"`` (dimensionless), ``"Linf"`` (1/pressure), ``"area_error"``, ``"area_error_rel"`` and
+            ``"load_drift"`` (dimensionless); with a hardness wall also ``"elastic_area_error"``,
+            ``"plastic_area_error"`` and ``"noncontact_area_error"``.
+        """
         out = {
             "L1": float(np.max(self.L1[-1])),
             "Linf": float(np.max(self.Linf[-1])),
@@ -274,25 +308,48 @@ class Comparison:
 
 @dataclass(frozen=True)
 class Solution:
-    """What a solver returns.
+    """What a solver returns: P0 at the output stations, the derived integrals and what the solver did.
+
+    Built by :meth:`build` (which checks the invariants, :func:`~persson_fp.solution.check_invariants`) from
+    :func:`persson_fp.solve`; a frozen dataclass.  The ``*_all`` arrays keep the load axis, their
+    counterparts without the suffix drop it for a scalar load.
 
     Attributes
     ----------
-    method : name of the method that produced it
-    problem : the :class:`ContactProblem`
-    zeta : output stations (dimensionless), shape ``(n_zeta,)``
-    p : grid (pressure), shape ``(n_p,)``: cell centres ("cell") or nodes ("point"); shape
-        ``(n_zeta, n_p)`` for a moving yield wall (the grid stretches with sigma_Y(zeta))
-    P0_all : P0 (1/pressure), shape ``(n_zeta, n_loads, n_p)``
-    weights : quadrature weights of the grid (pressure), ``int f dp ~ weights @ f``
-    kind : "cell" (P0 are cell averages) or "point" (P0 are point values)
-    contact_area_all : A* = int P0 dp (+ A_pl with a hardness wall), shape ``(n_zeta, n_loads)``
-    plastic_area_all : A_pl, the mass absorbed at the yield wall, shape ``(n_zeta, n_loads)``, or None
-    sigma_Y : the hardness at the stations (pressure), shape ``(n_zeta,)``, or None
-    contact_area_flux_all : A* from the absorbed flux (FV), or None
-    wall_time : seconds spent in the solver alone (its stepping; validation, building this Solution, its
-        checks and compile time excluded): time the ``pf.solve`` call for the end-to-end cost
-    info : grid, steps, rhs calls, options, checks, warnings
+    method : str
+        Name of the method that produced it.
+    problem : ContactProblem
+        The problem solved.
+    zeta : ndarray, dimensionless
+        Output stations, shape ``(n_zeta,)``.
+    p : ndarray, pressure
+        Grid, shape ``(n_p,)``: cell centres ("cell") or nodes ("point"); shape ``(n_zeta, n_p)`` for a
+        moving yield wall (the grid stretches with sigma_Y(zeta)).
+    P0_all : ndarray, 1/pressure
+        P0, shape ``(n_zeta, n_loads, n_p)`` (Xu et al. tutorial, Eq. 'eq:P0_solution' for its exact value).
+    weights : ndarray, pressure
+        Quadrature weights of the grid, ``int f dp ~ weights @ f``; the shape of ``p``.
+    kind : str
+        "cell" (P0 are cell averages) or "point" (P0 are point values).
+    contact_area_all : ndarray, dimensionless
+        A* = int P0 dp (Eq. 'eq:Area'; + A_pl with a hardness wall), shape ``(n_zeta, n_loads)``.
+    wall_time : float, seconds
+        Time spent in the solver alone (its stepping; validation, building this Solution, its checks and
+        compile time excluded): time the ``pf.solve`` call for the end-to-end cost.
+    info : dict
+        Grid, steps, rhs calls, options, checks, warnings.
+    contact_area_flux_all : ndarray or None, dimensionless
+        A* from 1 minus the flux absorbed at p = 0 (finite volumes), or None.
+    stderr_area_all : ndarray or None, dimensionless
+        Standard error of A* (stochastic methods), or None.
+    plastic_area_all : ndarray or None, dimensionless
+        A_pl, the mass absorbed at the yield wall, shape ``(n_zeta, n_loads)``, or None without a hardness.
+    sigma_Y : ndarray or None, pressure
+        The hardness at the stations, shape ``(n_zeta,)``, or None.
+    load_estimate_all : ndarray or None, pressure
+        The method's own estimate of int p P0 dp (Monte Carlo: the walkers' mean), or None.
+    stderr_load_all : ndarray or None, pressure
+        Standard error of ``load_estimate_all``, or None.
     """
 
     method: str
@@ -316,34 +373,80 @@ class Solution:
     @classmethod
     def build(
         cls,
-        method,
-        problem,
-        zeta,
-        p,
-        P0,
-        weights,
-        kind,
-        wall_time,
-        info=None,
-        contact_area=None,
-        contact_area_flux=None,
-        stderr_area=None,
-        check=True,
-        plastic_area=None,
-        tolerances=None,
-        load=None,
-        stderr_load=None,
-    ):
+        method: str,
+        problem: ContactProblem,
+        zeta: ArrayLike,
+        p: ArrayLike,
+        P0: ArrayLike,
+        weights: ArrayLike,
+        kind: str,
+        wall_time: float,
+        info: dict | None = None,
+        contact_area: ArrayLike | None = None,
+        contact_area_flux: ArrayLike | None = None,
+        stderr_area: ArrayLike | None = None,
+        check: bool = True,
+        plastic_area: ArrayLike | None = None,
+        tolerances: dict | None = None,
+        load: ArrayLike | None = None,
+        stderr_load: ArrayLike | None = None,
+    ) -> Solution:
         """Assemble a Solution, computing the integrals and checking the invariants.
 
         ``contact_area`` is the method's int P0 dp (the elastic area); with a hardness wall the method
         also hands over ``plastic_area`` (A_pl, the mass absorbed at sigma_Y) and the Solution's
-        ``contact_area`` is their sum.  ``p`` and ``weights`` may have a leading station axis (moving wall).
+        ``contact_area`` is their sum.  The invariants (A* in [0, 1] and non-increasing, Xu et al. tutorial,
+        Eq. 'eq:Area'; load balance, Eq. 'eq:Load_equilibrium'; P0 >= 0) are checked once, here.
 
-        ``check=True`` raises :class:`SolverError` on a breached invariant, ``check=False`` only
-        warns (:func:`~persson_fp.solution.check_invariants`; ``tolerances`` as there).  ``load`` (with ``stderr_load``)
-        is the method's own estimate of int p P0 dp where the grid quadrature is not the best one
-        (Monte Carlo: the mean over the walkers instead of the histogram).
+        Parameters
+        ----------
+        method : str
+            Name of the method (quoted in messages).
+        problem : ContactProblem
+            The problem solved.
+        zeta : float or 1-D array, dimensionless
+            Output stations, shape ``(n_zeta,)``.
+        p : array_like, pressure
+            Grid, shape ``(n_p,)``, or ``(n_zeta, n_p)`` for a moving yield wall.
+        P0 : array_like, 1/pressure
+            P0 at the stations, reshapeable to ``(n_zeta, n_loads, n_p)``.
+        weights : array_like, pressure
+            Quadrature weights of the grid, the shape of ``p``.
+        kind : str
+            "cell" (P0 are cell averages) or "point" (point values).
+        wall_time : float, seconds
+            Time spent stepping.
+        info : dict, optional
+            Grid, steps, rhs calls, options (copied).
+        contact_area : array_like, dimensionless, optional
+            The method's int P0 dp, shape ``(n_zeta, n_loads)``; default the grid quadrature of ``P0``.
+        contact_area_flux : array_like, dimensionless, optional
+            A* from the flux absorbed at p = 0 (finite volumes).
+        stderr_area : array_like, dimensionless, optional
+            Standard error of A* (stochastic methods).
+        check : bool
+            True: a breached invariant raises :class:`SolverError`; False: it only warns.
+        plastic_area : array_like, dimensionless, optional
+            A_pl, the mass absorbed at sigma_Y (with a hardness wall; default 0).
+        tolerances : dict, optional
+            Invariant tolerances, keys of ``DEFAULT_TOLERANCES`` (:func:`~persson_fp.solution.check_invariants`).
+        load : array_like, pressure, optional
+            The method's own estimate of int p P0 dp where the grid quadrature is not the best one
+            (Monte Carlo: the mean over the walkers instead of the histogram).
+        stderr_load : array_like, pressure, optional
+            Standard error of ``load``.
+
+        Returns
+        -------
+        Solution
+            With ``info["checks"]`` holding the result of :func:`~persson_fp.solution.check_invariants`.
+
+        Raises
+        ------
+        InstabilityError
+            P0 holds NaN or inf values (the scheme went unstable).
+        SolverError
+            With ``check=True``, a breached invariant, named with its remedy.
         """
         zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
         P0 = np.asarray(P0, dtype=float).reshape(zeta.size, problem.n_loads, -1)
@@ -479,7 +582,8 @@ class Solution:
         return self._squeeze(m2 - self.problem.p_bar**2)
 
     @property
-    def steps(self):
+    def steps(self) -> int | None:
+        """Number of steps the solver took (``info["steps"]``), or None where it does not count them."""
         return self.info.get("steps")
 
     # -- comparison ------------------------------------------------------------------------
@@ -490,8 +594,28 @@ class Solution:
             return None
         return self.zeta
 
-    def exact_on_grid(self, ex=None) -> np.ndarray:
-        """The exact P0 on this solution's grid in the same sense (cell averages or point values)."""
+    def exact_on_grid(self, ex: ExactSolution | None = None) -> np.ndarray:
+        """The exact P0 on this solution's grid in the same sense (cell averages or point values).
+
+        Cell averages are differences of :meth:`~persson_fp.ExactSolution.cdf_contact`, point values
+        :meth:`~persson_fp.ExactSolution.pdf` (Xu et al. tutorial, Eq. 'eq:P0_solution').
+
+        Parameters
+        ----------
+        ex : ExactSolution, optional
+            The exact solution at this solution's stations; default ``pf.exact(problem, zeta)``.
+
+        Returns
+        -------
+        ndarray, 1/pressure
+            Shape ``(n_zeta, n_loads, n_p)``.
+
+        Raises
+        ------
+        ValueError
+            The problem has no closed form (a scale-dependent hardness or general coefficients), or a
+            station at zeta = 1 (P0 a delta function there).
+        """
         if ex is None:
             ex = exact(self.problem, self._exact_zeta())
         if self.kind == "cell":
@@ -508,8 +632,19 @@ class Solution:
     def compare(self) -> Comparison:
         """Errors against :func:`persson_fp.exact` at every station (see :class:`Comparison`).
 
-        A scale-dependent hardness (moving yield wall) has no closed form: then a ``ValueError``
-        points to ``info["error_estimate"]``, the solver's own estimate.
+        The L1 and max errors of P0 (Xu et al. tutorial, Eq. 'eq:P0_solution'), the area error
+        (Eq. 'eq:Area_Persson') and the load drift (Eq. 'eq:Load_equilibrium').
+
+        Returns
+        -------
+        Comparison
+            Arrays of shape ``(n_zeta, n_loads)``.
+
+        Raises
+        ------
+        ValueError
+            The problem has no closed form (a scale-dependent hardness or general coefficients); the
+            message points to ``info["error_estimate"]``, the solver's own estimate.
         """
         if not self.problem.has_closed_form:
             raise ValueError(
@@ -593,7 +728,19 @@ class Solution:
         return out
 
     def summary(self) -> str:
-        """A few lines: method, grid, steps, wall time and the error made."""
+        """One line: method, grid, steps, wall time and the error made at the last station.
+
+        Returns
+        -------
+        str
+            The method, ``n_p``, steps, wall time (ms), L1 error, ``|dA*|`` (absolute and relative) and load
+            drift from :meth:`compare`.
+
+        Raises
+        ------
+        ValueError
+            The problem has no closed form to compare with (see :meth:`compare`).
+        """
         c = self.compare().final()
         return (
             f"{self.method}: n_p={self.p.size}, steps={self.info.get('steps')}, wall={self.wall_time * 1e3:.2f} ms, "
@@ -601,8 +748,23 @@ class Solution:
             f"load drift={c['load_drift']:.3e}"
         )
 
-    def plot(self, ax=None, **kwargs):
-        """P0 against the exact solution at every station (needs matplotlib)."""
+    def plot(self, ax: Axes | None = None, **kwargs: Any) -> Figure:
+        """P0 against the exact solution at every station (needs matplotlib).
+
+        Draws :func:`persson_fp.plotting.plot_solution` (its first load), in units of sqrt(V(zeta_max)).
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; default a new figure.
+        **kwargs
+            Passed to :func:`~persson_fp.plotting.plot_solution` (``stations``).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure drawn on.
+        """
         from . import plotting
 
         return plotting.plot_solution(self, ax=ax, **kwargs)

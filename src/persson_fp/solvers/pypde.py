@@ -48,7 +48,7 @@ The space error is that of 2nd-order finite volumes, :math:`\propto \Delta p^2`.
 time error cancels the leading space error -- and a start from the exact solution at
 tau0 = 0.05 tau_max) give on ``ContactProblem.reference()`` at zeta = 4, 32, 128 (measured, 2-core
 machine): L1 = 6e-8 without a fudge factor (the cancellation is exact for S = 1) and L1 = 5.7e-6,
-|dA*| = 2.9e-6 with "YP08" (the explicit coupling of S(A*) is 1st order: L1 ~ dp^2), in 0.03 s
+``|dA*|`` = 2.9e-6 with "YP08" (the explicit coupling of S(A*) is 1st order: L1 ~ dp^2), in 0.03 s
 of stepping **plus the numba compilation** of a stepper in which py-pde freezes the grid, the
 time map V(s) and S: 1.5-3 s when numba is warm, 7-20 s in a fresh process (``info["compile_time"]``,
 kept out of ``Solution.wall_time``).  The compiled stepper is cached in the process (the 16 most
