@@ -425,9 +425,9 @@ class ExactSolution:
         return [
             ("fudge", "fudge", repr(self.problem.fudge.name)),
             ("p_bar", "p_bar (pressure)", span(self.problem.p_bar)),
-            ("zeta", "zeta", span(self._zeta)),
-            ("V", "V (pressure^2)", span(self._V)),
-            ("A", "A*", span(self._A)),
+            ("zeta", "zeta", span(np.atleast_1d(self.zeta))),
+            ("V", "V (pressure^2)", span(np.atleast_1d(self.V))),
+            ("A", "A*", span(np.atleast_1d(self.contact_area))),
         ]
 
     def __repr__(self):
