@@ -40,7 +40,8 @@ _U0 = 1e-3
 _V_MAX = 1e16
 _RTOL = 1e-13
 _TABLE = 8192
-"""Nodes of the Hermite table in s = ln v (step ~5e-3; interpolation error ~1e-12 relative)."""
+"""Nodes of the Hermite table in s = ln v (step ~5e-3; interpolation error below 1e-11 relative: up to 6.4e-12
+for YP08 near p_bar / sqrt(V) = 0.01-0.03, against an independent high-precision integration)."""
 
 
 class EffectiveVariance:
