@@ -123,3 +123,15 @@ def test_exact_refuses_a_moving_wall():
     pr = pf.ContactProblem.reference(hardness=PowerLaw(0.1, 0.2))
     with pytest.raises(ValueError, match="no closed form"):
         pf.exact(pr)
+
+
+@pytest.mark.parametrize("tau", TAUS)
+def test_strip_areas_are_the_absorbed_masses_of_strip_quantities(tau):
+    from persson_fp.strip import strip_areas
+
+    q = strip_quantities(0.3, SIG, tau)
+    A_non, A_pl = strip_areas(0.3, SIG, tau)
+    assert A_non == pytest.approx(q["noncontact_area"], abs=1e-15) and A_pl == pytest.approx(
+        q["plastic_area"], abs=1e-15
+    )
+    assert 1.0 - A_non - A_pl == pytest.approx(q["elastic_area"], abs=1e-14)  # the balance ExactSolution uses

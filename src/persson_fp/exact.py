@@ -28,7 +28,7 @@ from scipy.special import erf, erfc
 
 from ._validate import as_float_array, as_positive_scalar
 from .problem import ContactProblem
-from .strip import strip_cdf, strip_pdf, strip_quantities
+from .strip import strip_areas, strip_cdf, strip_pdf, strip_quantities
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -212,12 +212,18 @@ class ExactSolution:
             sig = float(problem.hardness.sigma(1.0))
             self._sigma = sig
             tau_pos = np.where(self._tau > 0, self._tau, 1.0)
-            q = strip_quantities(np.broadcast_to(pb, self._tau.shape), sig, tau_pos)
+            # the absorbed masses alone (no moments); A_el and F_el by the exact balances; <p^2> on first use
+            A_non, A_pl = strip_areas(np.broadcast_to(pb, self._tau.shape), sig, tau_pos)
             at1 = self._tau <= 0
-            q["elastic_area"][at1], q["plastic_area"][at1], q["noncontact_area"][at1] = 1.0, 0.0, 0.0
-            q["elastic_load"][at1] = np.broadcast_to(pb, self._tau.shape)[at1]
-            q["plastic_load"][at1] = 0.0
-            q["elastic_second_moment"][at1] = np.broadcast_to(pb**2, self._tau.shape)[at1]
+            A_non[at1], A_pl[at1] = 0.0, 0.0
+            q = {
+                "noncontact_area": A_non,
+                "plastic_area": A_pl,
+                "elastic_area": 1.0 - A_non - A_pl,
+                "plastic_load": sig * A_pl,
+                "elastic_load": np.broadcast_to(pb, self._tau.shape) - sig * A_pl,
+            }
+            self._tau_pos = tau_pos
             self._strip = q
             self._A = q["elastic_area"] + q["plastic_area"]
             self._atom = q["noncontact_area"]
@@ -329,6 +335,11 @@ class ExactSolution:
     def _second_moment(self):
         if self._strip is None:
             return variance_closed_form(self.problem.p_bar[None, :], self._tau) + self.problem.p_bar**2
+        if "elastic_second_moment" not in self._strip:
+            pb = np.broadcast_to(self.problem.p_bar[None, :], self._tau.shape)
+            m2 = strip_quantities(pb, self._sigma, self._tau_pos)["elastic_second_moment"]
+            m2[self._tau <= 0] = pb[self._tau <= 0] ** 2
+            self._strip["elastic_second_moment"] = m2
         return self._strip["elastic_second_moment"] + self._sigma**2 * self._strip["plastic_area"]
 
     @property
