@@ -20,9 +20,9 @@ function of the neighbouring unknowns (cf. py-pde's boundary classes: the operat
 
 The state is :math:`y = (w_0, \dots, w_{n-1}, a)` and :math:`\dot y = L(t)\,y` with L banded (2 sub-, 1
 super-diagonal).  Because every face flux appears once with each sign, :math:`\sum_i w_i h + a + A_{non}` is
-conserved to round-off by any linear time integrator; ``march`` advances it with TR-BDF2 (L-stable, second
+conserved to round-off by any linear time integrator; ``step`` advances it with TR-BDF2 (L-stable, second
 order; Bank et al. 1985) or a θ-scheme, with the operator re-assembled at each stage time, and accumulates the
-flux through x = 0 with the same stage weights so that the balance closes exactly.
+flux through x = 0 with the same stage weights so that the balance closes exactly (:func:`step`).
 
 This module knows nothing of contact mechanics: :mod:`persson_fp.solvers.moving_wall` maps the moving yield wall
 onto it.
@@ -37,7 +37,7 @@ from scipy.linalg import get_lapack_funcs
 
 _gbsv = get_lapack_funcs("gbsv", dtype=np.float64)
 
-__all__ = ["AbsorbingWall", "YieldWall", "Coefficients", "assemble", "apply", "march", "GAMMA"]
+__all__ = ["AbsorbingWall", "YieldWall", "Coefficients", "assemble", "apply", "step", "outflux_low", "GAMMA"]
 
 GAMMA = 2.0 - np.sqrt(2.0)
 """TR-BDF2 stage fraction (both stages share one matrix)."""
@@ -202,18 +202,3 @@ def step(coef_at, t: float, dt: float, y: np.ndarray, h: float, scheme: str = "t
     y1 = _solve(assemble(c1, h), _BDF2_W * dt, _BDF2_A * ys - _BDF2_B * y + _BDF2_W * dt * f(t + dt))
     j1 = _BDF2_A * js + _BDF2_W * dt * outflux_low(c1, y1, h)
     return y1, j1
-
-
-def march(coef_at, t_nodes, y0: np.ndarray, h: float, scheme: str = "tr-bdf2", damped: int = 0, on_step=None):
-    """Advance ``y0`` (m, n + 1) over the nodes ``t_nodes``; yields nothing, calls ``on_step(k, t, y, absorbed)``
-    after every step k (1-based) and returns (y, absorbed through x = 0 (m,)).  The first ``damped`` steps are
-    done as two backward-Euler half steps."""
-    y = np.array(y0, dtype=float)
-    absorbed = np.zeros(y.shape[0])
-    for k in range(len(t_nodes) - 1):
-        t, dt = t_nodes[k], t_nodes[k + 1] - t_nodes[k]
-        y, j = step(coef_at, t, dt, y, h, "be-halves" if k < damped else scheme)
-        absorbed += j
-        if on_step is not None:
-            on_step(k + 1, t_nodes[k + 1], y, absorbed)
-    return y, absorbed

@@ -70,7 +70,7 @@ from ..exact import image_pdf
 from ..fudge import NoFudge
 from ..solution import SolverError
 from ..strip import strip_pdf
-from . import _ivp_march, moving_wall
+from . import _ivp_march, moving_wall_lines
 from .base import _HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
 
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
@@ -426,7 +426,7 @@ class MethodOfLinesSolver(Solver):
             n = 200 if o["n_p"] is None else o["n_p"]
             atol = o["atol"] if o["atol"] is not None else o["rtol"] * 1e-3
             frac = 0.05 if o["tau0_fraction"] is None else o["tau0_fraction"]
-            return moving_wall.solve_lines_cells(
+            return moving_wall_lines.solve_lines_cells(
                 self, n, o["rtol"], atol, o["integrator"], frac, o["tol"], o["zeta0"], o["k_domain"]
             )
         if pr.n_loads > _LOADS_PER_CHUNK and o["variable"] == "tau":
