@@ -490,7 +490,7 @@ class Solver:
 
     def run(self) -> Solution:
         """Solve, time it, and return a :class:`Solution` whose invariants are checked
-        (:class:`~persson_fp.solution.SolverError` on a breach, a warning with ``check=False``)."""
+        (:class:`~persson_fp.SolverError` on a breach, a warning with ``check=False``)."""
         t0 = time.perf_counter()
         out = self._solve()
         wall = time.perf_counter() - t0

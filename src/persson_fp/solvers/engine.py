@@ -22,7 +22,7 @@ The state is :math:`y = (w_0, \dots, w_{n-1}, a)` and :math:`\dot y = L(t)\,y` w
 super-diagonal).  Because every face flux appears once with each sign, :math:`\sum_i w_i h + a + A_{non}` is
 conserved to round-off by any linear time integrator; ``step`` advances it with TR-BDF2 (L-stable, second
 order; Bank et al. 1985) or a θ-scheme, with the operator re-assembled at each stage time, and accumulates the
-flux through x = 0 with the same stage weights so that the balance closes exactly (:func:`step`).
+flux through x = 0 with the same stage weights so that the balance closes exactly (``step``).
 
 This module knows nothing of contact mechanics: :mod:`persson_fp.solvers.moving_wall` maps the moving yield wall
 onto it.

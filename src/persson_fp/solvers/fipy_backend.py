@@ -36,7 +36,7 @@ solve per step) to 7-10 s (a fudge factor: ~3 solves per step with the sweeps) p
 time for ~4x accuracy (the first station, where tau is smallest, needs the most).  "explicit"
 needs n_steps ~ 3 tau_range/dp^2 (thousands of steps: minutes) and is refused above its
 stability limit unless ``allow_unstable=True``; FiPy itself would return a growing, oscillating field without a
-warning (persson-fp raises :class:`~persson_fp.solution.InstabilityError`).  "implicit" is 1st
+warning (persson-fp raises :class:`~persson_fp.InstabilityError`).  "implicit" is 1st
 order (needs ~10x the steps of "crank-nicolson").  ``initial="delta"`` (one cell at p_bar,
 zeta = 1) makes Crank--Nicolson ring (negative P0, reported in ``info["checks"]``).
 

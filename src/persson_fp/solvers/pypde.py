@@ -61,7 +61,7 @@ rhs call per evaluation; a dense finite-difference Jacobian with a fudge factor,
 ``initial="delta"`` (one cell at p_bar, zeta = 1) costs accuracy (L1 ~ 4e-3) and is there to
 show it.  An explicit run with ``n_steps`` above the stability limit is refused unless
 ``allow_unstable=True``; py-pde itself returns a silently huge field there (persson-fp raises
-:class:`~persson_fp.solution.InstabilityError`), and py-pde's "implicit"/"crank-nicolson" raise
+:class:`~persson_fp.InstabilityError`), and py-pde's "implicit"/"crank-nicolson" raise
 ``ConvergenceError`` (here an InstabilityError) once the step passes about the explicit limit.
 
 References
