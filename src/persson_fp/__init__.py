@@ -9,13 +9,12 @@ physics around it, and numerical solvers behind :func:`solve`.
 from . import fudge, hardness
 from .conventions import CONVENTIONS, abel_factor, abel_forward, abel_inverse
 from .effective import EffectiveVariance, effective_variance
+from .energy import elastic_energy, pressure_spectrum
 from .exact import (
     ExactSolution,
     area_from_tau,
-    elastic_energy,
     exact,
     image_pdf,
-    pressure_spectrum,
     variance_closed_form,
 )
 from .fokker_planck import FokkerPlanckProblem

@@ -21,7 +21,8 @@ import numpy as np
 from . import __version__
 from . import fudge as _fudge
 from ._cli_io import CLIError, _atomic_open, _check_new_file, _make_parent, _note_replaced, _save_figure
-from .exact import elastic_energy, exact
+from .energy import elastic_energy
+from .exact import exact
 from .hardness import PowerLaw
 from .problem import ContactProblem
 from .solution import SolverError

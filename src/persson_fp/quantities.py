@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .exact import elastic_energy
+from .energy import elastic_energy
 
 __all__ = ["Quantity", "QUANTITIES", "register_quantity", "get_quantities"]
 
