@@ -104,6 +104,7 @@ from .fv_operators import (  # noqa: F401  (re-exported: the operators are part 
     wall_flux,
 )
 from .fv_spectral import SpectralPath, _amplification, _growth, dst_eigenvalues  # noqa: F401
+from .fv_stepping import STEPPINGS, SteppingNodes
 
 __all__ = ["FiniteVolumeSolver", "SCHEMES", "rhs", "banded_operator", "apply_operator", "dst_eigenvalues"]
 
@@ -129,14 +130,11 @@ SCHEMES = {
 }
 """Scheme name -> θ, order in τ, L-stability and default coupling."""
 
-STEPPINGS = ("geometric", "zeta", "tau", "graded")
-_GRADE = 0.05
-"""'graded' stepping: uniform in s = tau + _GRADE tau_max ln(tau) (geometric below _GRADE tau_max, uniform above)."""
 COUPLINGS = ("auto", "lagged", "predictor", "picard")
 LINALGS = ("auto", "dst", "banded")
 
 
-class FiniteVolumeSolver(SpectralPath, Solver):
+class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
     r"""Cell-centred finite volumes with θ-schemes / TR-BDF2 (see the module docstring).
 
     Options
@@ -246,80 +244,6 @@ class FiniteVolumeSolver(SpectralPath, Solver):
         if self._hard and self.opts["initial"] == "exact":  # the yield wall may have absorbed a little already
             self._A_pl0 = np.asarray(self.exact_at(z0).plastic_area, dtype=float).reshape(pr.n_loads)
         return z0, V0, P, A
-
-    def _zeta_of_V(self, V) -> float:
-        """Magnification where V(zeta) = V (1 for V <= 0)."""
-        return float(self.zeta_from_V(V)[0])
-
-    def _nodes(self, V0):
-        """V at the step nodes, shape (n_nodes, n_loads); every station is a node."""
-        o, pr = self.opts, self.problem
-        V_st = np.concatenate(([V0], self.V_out))
-        z_st = np.concatenate(([self.zeta0], self.zeta_out))
-        m = pr.n_loads
-        if o["stepping"] == "zeta":
-            s = z_st
-        elif o["stepping"] == "geometric":
-            s = np.log(np.maximum(V_st, 1e-3 * V_st[1]))
-        else:  # tau of the largest-tau load decides the split; nodes per load below
-            s = np.max(pr.tau_of_V(V_st), axis=-1)
-            if o["stepping"] == "graded":  # (the offset 1e-3 g keeps a delta start, tau = 0, finite)
-                tau_st = s
-                warp = self._warp()
-                g = _GRADE * float(warp(tau_st[-1]))
-                s = warp(tau_st) + g * np.log(warp(tau_st) + 1e-3 * g)
-        lengths = np.diff(s)
-        n_seg = len(lengths)
-        counts = np.maximum(1, np.round(o["n_steps"] * lengths / max(s[-1] - s[0], 1e-300)).astype(int))
-        while counts.sum() > max(o["n_steps"], n_seg):
-            counts[np.argmax(counts)] -= 1
-        while counts.sum() < o["n_steps"]:
-            counts[np.argmax(lengths / counts)] += 1
-        pieces = [np.full((1, m), V_st[0])]
-        for i in range(n_seg):
-            t = np.linspace(0.0, 1.0, counts[i] + 1)[1:]
-            Va, Vb = V_st[i], V_st[i + 1]
-            if o["stepping"] == "zeta":
-                V = np.atleast_1d(pr.V(z_st[i] + t * (z_st[i + 1] - z_st[i])))[:, None] * np.ones(m)
-            elif o["stepping"] == "geometric":
-                lo = max(Va, 1e-3 * V_st[1])
-                V = np.exp(np.log(lo) + t * (np.log(Vb) - np.log(lo)))[:, None] * np.ones(m)
-            elif o["stepping"] == "graded":  # uniform in s within the segment, mapped to tau fractions
-                ta, tb = tau_st[i], tau_st[i + 1]
-                tt = ta + np.geomspace(1e-3 * g, tb - ta + 1e-3 * g, 513) - 1e-3 * g
-                ss = warp(tt) + g * np.log(warp(tt) + 1e-3 * g)
-                tau_t = np.interp(s[i] + t * (s[i + 1] - s[i]), ss, tt)
-                V = self._uniform_tau_nodes(Va, Vb, (tau_t - ta) / max(tb - ta, 1e-300))
-            else:
-                V = self._uniform_tau_nodes(Va, Vb, t)
-            V[-1] = Vb  # land on the station exactly
-            pieces.append(V)
-        return np.concatenate(pieces, axis=0), np.cumsum(counts)
-
-    def _warp(self):
-        """tau as the graded stepping sees it: tau itself, or with a constant hardness
-        T = c (1 - exp(-tau / c)), c = 30 sigma_Y^2: the strip forgets its start on the time scale sigma_Y^2
-        (the elastic area decays like exp(-pi^2 tau / (2 sigma_Y^2))), so steps are spent before that, not
-        spread uniformly over a tau far beyond it."""
-        pr = self.problem
-        if pr.hardness is None:
-            return lambda t: np.asarray(t, dtype=float)
-        c = 30.0 * float(pr.hardness.sigma(1.0)) ** 2
-        return lambda t: -c * np.expm1(-np.asarray(t, dtype=float) / c)
-
-    def _uniform_tau_nodes(self, Va, Vb, t):
-        """V nodes at the tau fractions ``t`` between tau(Va) and tau(Vb), per load, shape (len(t), n_loads).
-
-        The closed-form tau of each load, inverted exactly (:meth:`~persson_fp.ContactProblem.V_of_tau_each`).
-        """
-        pr = self.problem
-        if Vb <= Va:
-            return np.full((t.size, pr.n_loads), Vb)
-        if isinstance(pr.fudge, NoFudge):
-            return (Va + t * (Vb - Va))[:, None] * np.ones(pr.n_loads)
-        ta, tb = pr.tau_of_V(np.array([Va, Vb]))  # (n_loads,) each
-        V = pr.V_of_tau_each(ta + t[:, None] * (tb - ta))
-        return np.minimum(np.maximum(V, Va), Vb)  # (round-off of the inverse table kept inside the segment)
 
     # -- the run ---------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
