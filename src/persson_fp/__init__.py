@@ -24,14 +24,8 @@ from .separation import WEIGHTINGS, MeanSeparation, contact_stiffness, mean_sepa
 from .solution import Comparison, InstabilityError, Solution, SolverError
 from .solvers import METHODS, available_methods, solve
 from .spectrum import PSD, SelfAffinePSD, TabulatedPSD
-from .surface import (
-    MeasuredSurface,
-    from_surface_topography,
-    psd_from_heightmap,
-    psd_from_profiles,
-    read_contact_engineering_csv,
-    read_heightmap,
-)
+from .surface import MeasuredSurface, psd_from_heightmap, psd_from_profiles
+from .surface_io import from_surface_topography, read_contact_engineering_csv, read_heightmap
 from .sweep_table import SweepResult
 from .sweep_table import read_table as read_sweep_table
 from .sweeps import SweepError, sweep

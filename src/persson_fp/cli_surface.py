@@ -40,7 +40,7 @@ def add_parser(sub):
 
 
 def _read(args):
-    from .surface import read_contact_engineering_csv, read_heightmap
+    from .surface_io import read_contact_engineering_csv, read_heightmap
 
     path = args.file
     if not os.path.exists(path):
