@@ -119,16 +119,13 @@ def strip_quantities(p_bar, sigma, tau) -> dict:
         (dimensionless), ``elastic_load`` :math:`F_{el}`, ``plastic_load`` :math:`\sigma_Y A_{pl}` (pressure) and
         ``elastic_second_moment`` :math:`\int_0^{\sigma_Y} p^2 P\,dp` (pressure^2); see the module docstring.
     """
+    A_non, A_pl = strip_areas(p_bar, sigma, tau)  # the absorbed masses (first passage / sines)
     p_bar, sigma, tau, use_images = _prep(p_bar, sigma, tau)
-    out = {k: np.empty(p_bar.shape) for k in ("A_el", "A_pl", "A_non", "F_el", "M2")}
-    if np.any(use_images):
+    out = {"A_non": A_non, "A_pl": A_pl, **{k: np.empty(p_bar.shape) for k in ("A_el", "F_el", "M2")}}
+    if np.any(use_images):  # the moments of the PDF, independently of the absorbed masses
         pb, sg, tt = p_bar[use_images], sigma[use_images], tau[use_images]
         m0, m1, m2 = _moments_images(pb, sg, tt)
-        ap, am = _images(pb, sg)
-        A_non = np.sum(_first_passage(ap, tt[..., None]) - _first_passage(am, tt[..., None]), axis=-1)
-        bp, bm = _images(sg - pb, sg)
-        A_pl = np.sum(_first_passage(bp, tt[..., None]) - _first_passage(bm, tt[..., None]), axis=-1)
-        for key, val in zip(("A_el", "A_pl", "A_non", "F_el", "M2"), (m0, A_pl, A_non, m1, m2)):
+        for key, val in zip(("A_el", "F_el", "M2"), (m0, m1, m2)):
             out[key][use_images] = val
     far = ~use_images
     if np.any(far):
@@ -136,8 +133,6 @@ def strip_quantities(p_bar, sigma, tau) -> dict:
         n, sig, se, sgn = _sine_terms(pb, sg, tt)
         npi = n * np.pi
         out["A_el"][far] = np.sum(2.0 / npi * (1.0 + sgn) * se, axis=-1)
-        out["A_non"][far] = (1.0 - pb / sg) - np.sum(2.0 / npi * se, axis=-1)
-        out["A_pl"][far] = pb / sg - np.sum(2.0 / npi * sgn * se, axis=-1)
         out["F_el"][far] = np.sum(2.0 * sig * sgn / npi * se, axis=-1)
         out["M2"][far] = np.sum(2.0 * sig**2 * (sgn / npi - 2.0 * (1.0 + sgn) / npi**3) * se, axis=-1)
     return {

@@ -23,7 +23,7 @@ def test_fv_constant_hardness_against_the_strip_series(fudge, linalg):
     assert np.max(c.plastic_area_error[-1]) < 4e-7 and np.max(c.plastic_area_error) < 4e-6
     assert np.max(c.elastic_area_error[-1]) < 4e-7 and np.max(c.elastic_area_error) < 4e-6
     assert np.max(c.mass_balance) < 1e-12
-    assert np.allclose(sol.elastic_area + sol.plastic_area + sol.noncontact_area, 1.0, atol=1e-14)
+    # (A_non is 1 - A_el - A_pl by definition; the independent check is the wall-flux balance above)
     assert np.max(np.abs(sol.load - sol.problem.p_bar) / sol.problem.p_bar) < 2e-6
 
 
@@ -79,7 +79,8 @@ def test_moving_wall_conserves_area_and_load_and_reports_its_error():
     pr = _moving(p_bar=np.array([0.1, 0.3]))
     sol = pf.solve(pr, method="fv", n_p=100, n_steps=100, zeta_out=[3.0, 10.0])
     ref = pf.solve(pr, method="fv", n_p=400, n_steps=400, zeta_out=[3.0, 10.0])
-    assert np.allclose(sol.elastic_area + sol.plastic_area + sol.noncontact_area, 1.0, atol=1e-12)
+    # the areas from the cells and the wall mass against 1 - the mass absorbed at p = 0, accumulated apart
+    assert np.max(np.abs(sol.contact_area - sol.contact_area_flux)) < 1e-12
     assert sol.info["area_residual"] < 1e-12
     assert sol.info["load_residual"] < 1e-5  # measured 5.5e-6 (2nd order: 1.5e-6 at 200 cells and steps)
     assert np.allclose(sol.load, pr.p_bar, rtol=1e-5)
