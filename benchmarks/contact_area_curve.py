@@ -16,7 +16,7 @@ import numpy as np
 
 import persson_fp as pf
 from persson_fp import plotting
-from persson_fp.effective import EffectiveVariance
+from persson_fp.theory.effective import EffectiveVariance
 
 sys.path.insert(0, __import__("os").path.dirname(__file__))
 from _common import machine, median_time, outdir, parser, write_csv  # noqa: E402

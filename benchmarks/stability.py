@@ -41,7 +41,7 @@ import warnings
 import numpy as np
 
 import persson_fp as pf
-from persson_fp.solution import InstabilityError
+from persson_fp.results.solution import InstabilityError
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from _common import errors_of, have, machine, markdown_table, outdir, parser, progress, write_csv  # noqa: E402

@@ -24,7 +24,7 @@
 # * original theory: $A^* = \mathrm{erf}\big(\bar p/\sqrt{2V(\zeta)}\big)$ (`eq:Area_Persson`), small-load limit
 #   $A^*\approx\sqrt{2/\pi}\,\bar p/\sqrt{V}$ (`eq:Asymptote_1`), $\mathrm{Var}(p)=\int A^*\,dV$ (`eq:variance_p_form1`);
 # * fudge-factor theories, $B_2 = S(A^*)\,dV/d\zeta$ (`eq:new_B2`): the same formulas at the effective variance
-#   $\tau=\int S\,dV$ instead of $V$ (`persson_fp.effective`), so $A^*=\mathrm{erf}(\bar p/\sqrt{2\tau})$ and $\mathrm{Var}(p)=\int A^*\,d\tau$.
+#   $\tau=\int S\,dV$ instead of $V$ (`persson_fp.theory.effective`), so $A^*=\mathrm{erf}(\bar p/\sqrt{2\tau})$ and $\mathrm{Var}(p)=\int A^*\,d\tau$.
 #
 # Equation labels such as `eq:P0_solution` or `E:PSD` and figure numbers refer to Y. Xu, X. Li, Q. Chen and
 # Y. Zhou, "Persson's Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic
@@ -52,7 +52,7 @@ print(f"V(zeta_max) = {V_max:.4e} (E* units^2), sqrt(V) = {np.sqrt(V_max):.4e}")
 # ## 1. $A^*(\bar p/\sqrt V)$ — the tutorial's Fig. 5(b)
 #
 # In every model $A^*$ at a given magnification depends on $\bar p/\sqrt{V(\zeta)}$ alone (for the fudge models this
-# follows from the scale-free effective-variance ODE of `persson_fp.effective`). Left: logarithmic load axis with the plain
+# follows from the scale-free effective-variance ODE of `persson_fp.theory.effective`). Left: logarithmic load axis with the plain
 # asymptote (`eq:Asymptote_1`, dotted); right: linear axis as in the tutorial's figure.
 
 # %%

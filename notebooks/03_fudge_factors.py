@@ -19,7 +19,7 @@
 # *current* contact area — a nonlinear, nonlocal PDE. What do the models' $S(A^*)$ look like (Yang–Persson with
 # $\gamma$ from 0.42 to 0.48, Wang–Müser, Xu24, and a user-defined callable); do the numerical solvers, which take
 # $A^*=\int P_0\,dp$ from their own solution at every step, reproduce the exact effective-variance solution
-# ($P_0$ = image solution at $\tau=\int S\,dV$, `persson_fp.effective`); and how far does each model move $A^*$ away from
+# ($P_0$ = image solution at $\tau=\int S\,dV$, `persson_fp.theory.effective`); and how far does each model move $A^*$ away from
 # Persson 2001?
 #
 # Equation labels such as `eq:P0_solution` or `E:PSD` and figure numbers refer to Y. Xu, X. Li, Q. Chen and

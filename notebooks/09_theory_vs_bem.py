@@ -139,7 +139,7 @@ for ax, H in zip(axes, HS):
 # $\bar p = (\bar p/E^*\bar g)\,E^*\bar g$. With the nominal spectrum every surface has $V=0.0025$ and one $A^*$ per model;
 # with the realised spectra (`TabulatedPSD`, after dropping the $q=0$ row and the empty shells beyond $q_s$, as in
 # notebook 06) each realisation gets its own. Note: at $\zeta_{max}$, $A^*$ and $P_0$ depend on the spectrum **only through
-# $V(\zeta_{max})$** in every model here (`persson_fp.effective`), so the realised spectrum changes them only as much as its
+# $V(\zeta_{max})$** in every model here (`persson_fp.theory.effective`), so the realised spectrum changes them only as much as its
 # continuum $V$ differs from 0.0025 (the shell table integrates to a slightly smaller $V$, see notebook 06).
 
 # %%

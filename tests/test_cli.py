@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import persson_fp as pf
-from persson_fp.cli import main
+from persson_fp.cli.app import main
 
 
 def test_report_default_case(tmp_path, capsys):
@@ -117,7 +117,7 @@ def test_solve_json_and_bad_method(tmp_path, capsys):
 
 def test_solve_with_a_hardness(capsys):
     """persson-fp solve --hardness: the plastic area printed; a moving wall prints the solver's estimate."""
-    from persson_fp.cli import main
+    from persson_fp.cli.app import main
 
     assert main(["solve", "--hardness", "0.075", "--method", "sines"]) == 0
     out = capsys.readouterr().out

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 import persson_fp as pf
-from persson_fp import cli
-from persson_fp.cli import main
+from persson_fp.cli import app as cli
+from persson_fp.cli.app import main
 
 
 def _one_line_error(capsys, rc, word):

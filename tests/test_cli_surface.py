@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import persson_fp as pf
-from persson_fp.cli import main
+from persson_fp.cli.app import main
 
 DATA = os.path.join(os.path.dirname(__file__), "..", "data", "bem")
 

@@ -5,7 +5,7 @@ import pytest
 from scipy.special import erf
 
 import persson_fp as pf
-from persson_fp.cli import main
+from persson_fp.cli.app import main
 
 
 def _write_surfaces(folder):

@@ -1,7 +1,7 @@
 """Every public name has a numpy-style docstring: a summary, and for a callable its Parameters and Returns.
 
 Public names: ``persson_fp.__all__``, the public methods and properties of its classes, and the ``__all__`` of
-``persson_fp.fudge`` and ``persson_fp.plotting``. The docstrings are parsed with numpydoc's own parser (the
+``persson_fp.theory.fudge`` and ``persson_fp.plotting``. The docstrings are parsed with numpydoc's own parser (the
 ``docs`` extra; skipped without it). A callable without parameters (besides ``self``) needs no Parameters
 section; a property or an exception class needs only its summary. The documented parameter names must be the
 signature's (``*args``/``**kwargs`` may be documented as such).
@@ -12,8 +12,8 @@ import inspect
 import pytest
 
 import persson_fp as pf
-import persson_fp.fudge
 import persson_fp.plotting
+import persson_fp.theory.fudge
 
 docscrape = pytest.importorskip("numpydoc.docscrape")
 
@@ -25,7 +25,7 @@ PENDING: set[str] = set()
 def _public():
     """(qualified name, object, kind) of every public name."""
     out = []
-    modules = [(pf, ""), (persson_fp.fudge, "fudge."), (persson_fp.plotting, "plotting.")]
+    modules = [(pf, ""), (persson_fp.theory.fudge, "fudge."), (persson_fp.plotting, "plotting.")]
     for module, prefix in modules:
         for name in module.__all__:
             obj = getattr(module, name)

@@ -223,7 +223,7 @@ def test_more_bad_input_names_the_parameter(make, match):
 
 def test_tail_mass_is_the_complement_of_the_cdf():
     """tail_mass(p) = A* - cdf_contact(p) (two closed forms), and it matches a quadrature of the pdf."""
-    from persson_fp.exact import tail_mass
+    from persson_fp.theory.image import tail_mass
 
     pr = pf.ContactProblem.reference(p_bar_ratio=np.array([0.1, 0.5, 2.0]))
     ex = pf.exact(pr, 40.0)

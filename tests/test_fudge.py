@@ -1,4 +1,4 @@
-"""Fudge factors (eq:new_B2) and the effective-variance map (persson_fp.effective)."""
+"""Fudge factors (eq:new_B2) and the effective-variance map (persson_fp.theory.effective)."""
 
 import numpy as np
 import pytest
@@ -6,7 +6,7 @@ from scipy.integrate import solve_ivp
 from scipy.special import erf
 
 import persson_fp as pf
-from persson_fp import fudge as F
+from persson_fp.theory import fudge as F
 
 
 def test_models_and_defaults_stated_once():

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import persson_fp as pf
-from persson_fp.solution import Solution, check_invariants
+from persson_fp.results.solution import Solution, check_invariants
 from persson_fp.solvers import available_methods, get_solver
 
 REF = pf.ContactProblem.reference

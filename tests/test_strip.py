@@ -5,8 +5,8 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 
 import persson_fp as pf
-from persson_fp.hardness import CallableHardness, ConstantHardness, PowerLaw, resolve
-from persson_fp.strip import strip_cdf, strip_pdf, strip_quantities
+from persson_fp.theory.hardness import CallableHardness, ConstantHardness, PowerLaw, resolve
+from persson_fp.theory.strip import strip_cdf, strip_pdf, strip_quantities
 
 SIG = 1.0
 # tau below and above the image/sine switch at tau = sigma^2, and right at it
@@ -128,7 +128,7 @@ def test_exact_refuses_a_moving_wall():
 
 @pytest.mark.parametrize("tau", TAUS)
 def test_strip_areas_are_the_absorbed_masses_of_strip_quantities(tau):
-    from persson_fp.strip import strip_areas
+    from persson_fp.theory.strip import strip_areas
 
     q = strip_quantities(0.3, SIG, tau)
     A_non, A_pl = strip_areas(0.3, SIG, tau)

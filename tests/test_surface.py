@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import persson_fp as pf
-from persson_fp.conventions import abel_factor, abel_forward, abel_inverse
+from persson_fp.surfaces.conventions import abel_factor, abel_forward, abel_inverse
 
 DATA = os.path.join(os.path.dirname(__file__), "..", "data", "bem")
 REF = pf.SelfAffinePSD.from_rms_slope(0.1, 0.8, 2 * np.pi, 8 * np.pi, 128 * np.pi)

@@ -13,9 +13,9 @@ from scipy.integrate import quad
 from scipy.special import erf
 
 import persson_fp as pf
-from persson_fp import quantities as pq
-from persson_fp import sweeps as psweep
-from persson_fp.sweeps import SweepWarning
+from persson_fp.sweeps import quantities as pq
+from persson_fp.sweeps import run as psweep
+from persson_fp.sweeps.run import SweepWarning
 
 LOADS = np.array([0.01, 0.1, 0.5, 1.0, 2.5])  # p_bar / sqrt(V(zeta_max))
 
@@ -385,16 +385,16 @@ def test_separation_quantities_register_when_the_module_exists():
         assert added == missing
         if added:  # the wrappers look the module up by name
             pr = pf.ContactProblem.reference(p_bar_ratio=np.array([0.1, 0.2]))
-            old = sys.modules.get("persson_fp.separation")
-            sys.modules["persson_fp.separation"] = fake
+            old = sys.modules.get("persson_fp.theory.separation")
+            sys.modules["persson_fp.theory.separation"] = fake
             try:
                 np.testing.assert_array_equal(pq.QUANTITIES["stiffness"](pr, None), 2 * pr.p_bar)
                 assert pq.QUANTITIES["mean_separation"].unit == "length"
             finally:
                 if old is None:
-                    del sys.modules["persson_fp.separation"]
+                    del sys.modules["persson_fp.theory.separation"]
                 else:
-                    sys.modules["persson_fp.separation"] = old
+                    sys.modules["persson_fp.theory.separation"] = old
     finally:
         for n in added:
             del pq.QUANTITIES[n]

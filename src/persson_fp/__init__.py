@@ -6,31 +6,32 @@ package gives its exact solution (:func:`exact`), the spectrum and fudge-factor
 physics around it, and numerical solvers behind :func:`solve`.
 """
 
-from . import fudge, hardness
-from .conventions import CONVENTIONS, abel_factor, abel_forward, abel_inverse
-from .effective import EffectiveVariance, effective_variance
-from .energy import elastic_energy, pressure_spectrum
-from .exact import (
-    ExactSolution,
-    area_from_tau,
-    exact,
-    image_pdf,
-    variance_closed_form,
+from persson_fp._version import __version__
+from persson_fp.problems.contact import ContactProblem
+from persson_fp.problems.fokker_planck import FokkerPlanckProblem
+from persson_fp.results.energy import elastic_energy, pressure_spectrum
+from persson_fp.results.exact import ExactSolution, exact
+from persson_fp.results.solution import Comparison, InstabilityError, Solution, SolverError
+from persson_fp.solvers import METHODS, available_methods, solve
+from persson_fp.surfaces.conventions import CONVENTIONS, abel_factor, abel_forward, abel_inverse
+from persson_fp.surfaces.heightmap import MeasuredSurface, psd_from_heightmap, psd_from_profiles
+from persson_fp.surfaces.psd import PSD, SelfAffinePSD
+from persson_fp.surfaces.readers import from_surface_topography, read_contact_engineering_csv, read_heightmap
+from persson_fp.surfaces.tabulated import TabulatedPSD
+from persson_fp.sweeps.quantities import QUANTITIES, register_quantity
+from persson_fp.sweeps.run import SweepError, sweep
+from persson_fp.sweeps.table import SweepResult
+from persson_fp.sweeps.table import read_table as read_sweep_table
+from persson_fp.theory import fudge, hardness
+from persson_fp.theory.effective import EffectiveVariance, effective_variance
+from persson_fp.theory.image import area_from_tau, image_pdf, variance_closed_form
+from persson_fp.theory.separation import (
+    WEIGHTINGS,
+    MeanSeparation,
+    contact_stiffness,
+    mean_separation,
+    separation_from_areas,
 )
-from .fokker_planck import FokkerPlanckProblem
-from .problem import ContactProblem
-from .quantities import QUANTITIES, register_quantity
-from .separation import WEIGHTINGS, MeanSeparation, contact_stiffness, mean_separation, separation_from_areas
-from .solution import Comparison, InstabilityError, Solution, SolverError
-from .solvers import METHODS, available_methods, solve
-from .spectrum import PSD, SelfAffinePSD, TabulatedPSD
-from .surface import MeasuredSurface, psd_from_heightmap, psd_from_profiles
-from .surface_io import from_surface_topography, read_contact_engineering_csv, read_heightmap
-from .sweep_table import SweepResult
-from .sweep_table import read_table as read_sweep_table
-from .sweeps import SweepError, sweep
-
-__version__ = "0.1.0"
 
 __all__ = [
     "PSD",

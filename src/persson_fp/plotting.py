@@ -12,14 +12,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .exact import exact
-from .problem import ContactProblem
+from persson_fp.problems.contact import ContactProblem
+from persson_fp.results.exact import exact
 
 if TYPE_CHECKING:  # matplotlib is imported only when a figure is drawn
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from .solution import Solution
+    from persson_fp.results.solution import Solution
 
 __all__ = ["plot_exact_pdfs", "plot_solution", "plot_area_curve", "plot_error_vs_time"]
 

@@ -6,7 +6,7 @@ import sys
 import pytest
 
 import persson_fp as pf
-from persson_fp.solution import InstabilityError
+from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers import get_solver
 
 fipy = pytest.importorskip("fipy")

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import persson_fp as pf
-from persson_fp.solution import InstabilityError
+from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers import get_solver
 
 pde = pytest.importorskip("pde")

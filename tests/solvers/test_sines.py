@@ -5,7 +5,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import persson_fp as pf
-from persson_fp.solvers import sines
+from persson_fp.solvers import sines_taumap
 from persson_fp.solvers.sines import SineSeriesSolver, image_area, modes_needed, series_area, series_pdf
 
 ZETA_OUT = [1.5, 10.0, 128.0]
@@ -219,7 +219,7 @@ def test_tau_map_guess_is_only_a_guess(monkeypatch, scale):
 
 
 def test_tau_map_reports_non_convergence(monkeypatch):
-    monkeypatch.setattr(sines, "_MAX_NEWTON", 1)
+    monkeypatch.setattr(sines_taumap, "_MAX_NEWTON", 1)
     pr = pf.ContactProblem.reference(fudge="YP08", p_bar_ratio=0.3)
     with pytest.raises(RuntimeError, match="did not converge in 1 Newton steps"):
         pf.solve(pr, "sines", tol=1e-2)  # the loose truncation makes the first step's bound exceed rtol
@@ -231,7 +231,7 @@ def test_tau_map_is_cheap():
     pr = pf.ContactProblem.reference(fudge="YP08", p_bar_ratio=np.geomspace(0.01, 3.0, 7))
     sol = pf.solve(pr, "sines", zeta_out=ZETA_OUT)
     assert sol.info["tau_map_iterations"] == 1
-    assert sol.info["tau_map_nodes"] == (sines._TABLE_Q + 2) * len(ZETA_OUT) * 7
+    assert sol.info["tau_map_nodes"] == (sines_taumap._TABLE_Q + 2) * len(ZETA_OUT) * 7
 
 
 @pytest.mark.parametrize(("ratio", "zeta_out"), [(0.5, [1.0 + 1e-9, 128.0]), (1e8, None)])

@@ -10,13 +10,13 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING
 
-from .base import SHARED_KNOBS, Solver, SolverOutput
+from persson_fp.solvers.base import SHARED_KNOBS, Solver, SolverOutput
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from ..problem import ContactProblem
-    from ..solution import Solution
+    from persson_fp.problems.contact import ContactProblem
+    from persson_fp.results.solution import Solution
 
 __all__ = ["METHODS", "EXTRAS", "solve", "get_solver", "available_methods", "Solver", "SolverOutput", "SHARED_KNOBS"]
 
@@ -24,8 +24,8 @@ METHODS = {
     "fv": "persson_fp.solvers.fv:FiniteVolumeSolver",
     "mol": "persson_fp.solvers.mol:MethodOfLinesSolver",
     "sines": "persson_fp.solvers.sines:SineSeriesSolver",
-    "py-pde": "persson_fp.solvers.pypde:PyPDESolver",
-    "fipy": "persson_fp.solvers.fipy_backend:FiPySolver",
+    "py-pde": "persson_fp.solvers.backends.pypde:PyPDESolver",
+    "fipy": "persson_fp.solvers.backends.fipy:FiPySolver",
     "chapman-kolmogorov": "persson_fp.solvers.chapman_kolmogorov:ChapmanKolmogorovSolver",
     "monte-carlo": "persson_fp.solvers.monte_carlo:MonteCarloSolver",
 }
@@ -129,7 +129,7 @@ def solve(
         meets ``tol``; ``info["auto"]`` says what was done.  With "sines" it is the series' truncation tolerance.
     check : bool, default True
         Check the invariants of the result (A* in [0, 1] and non-increasing, load balance, P0 >= 0,
-        finite; :func:`persson_fp.solution.check_invariants`): a breach raises
+        finite; :func:`persson_fp.results.solution.check_invariants`): a breach raises
         :class:`~persson_fp.SolverError`; ``False`` turns it into a ``RuntimeWarning``.
     max_memory : float, optional
         Memory budget in bytes (default ``solvers.base.MEMORY_BUDGET``, 4 GiB): a run estimated to
@@ -164,18 +164,18 @@ def solve(
     SolverError
         The result breaks an invariant (with ``check=True``).
     """
-    from ._threads import blas_threads as _limit
-    from ._threads import check_blas_threads
+    from persson_fp.solvers._threads import blas_threads as _limit
+    from persson_fp.solvers._threads import check_blas_threads
 
     n_threads = check_blas_threads(blas_threads)
     if isinstance(method, str) and method == "auto":
-        from .auto import solve_auto
+        from persson_fp.solvers.auto import solve_auto
 
         with _limit(n_threads):
             return solve_auto(problem, zeta_out, 1e-6 if tol is None else tol, **options)
     if tol is not None and isinstance(method, str) and method in ("fv", "mol"):
-        from .auto import solve_to_tol
-        from .base import check_float
+        from persson_fp.solvers.auto import solve_to_tol
+        from persson_fp.solvers.base import check_float
 
         with _limit(n_threads):
             return solve_to_tol(problem, method, zeta_out, check_float(tol, "tol", 0.0, 1e-1), **options)

@@ -27,7 +27,7 @@ import time
 
 import numpy as np
 
-from ..solution import SolverError
+from persson_fp.results.solution import SolverError
 
 __all__ = ["solve_auto", "solve_to_tol", "MAX_REFINE"]
 
@@ -62,7 +62,7 @@ def _errors(sol):
 
 
 def _attempt(problem, method, zeta_out, options):
-    from . import get_solver
+    from persson_fp.solvers import get_solver
 
     return get_solver(method)(problem, zeta_out=zeta_out, **options).run()
 
@@ -133,7 +133,7 @@ def solve_to_tol(problem, method: str, zeta_out, tol: float, why: str = "", **op
 
 def solve_auto(problem, zeta_out=None, tol: float = 1e-6, **options):
     """``method="auto"``: the cheapest way to ``tol`` (module docstring)."""
-    from .base import check_float
+    from persson_fp.solvers.base import check_float
 
     tol = check_float(tol, "tol", 0.0, 1e-1)
     if options:

@@ -3,7 +3,7 @@
 A method subclasses :class:`Solver`, declares its own options with defaults in
 ``OPTIONS`` and writes only :meth:`Solver._solve`, which returns a
 :class:`SolverOutput`.  :meth:`Solver.run` owns validation, timing and the
-assembly of the :class:`~persson_fp.solution.Solution` (where the invariants
+assembly of the :class:`~persson_fp.results.solution.Solution` (where the invariants
 are checked once).  Cf. scipy's ``OdeSolver.step``/``_step_impl``.
 
 Shared resolution knobs: ``n_p``, ``n_steps``, ``rtol``, ``atol``,
@@ -21,10 +21,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import as_float_array
-from ..exact import exact
-from ..problem import ContactProblem
-from ..solution import DEFAULT_TOLERANCES, InstabilityError, Solution
+from persson_fp._validate import as_float_array
+from persson_fp.problems.contact import ContactProblem
+from persson_fp.results.exact import exact
+from persson_fp.results.solution import DEFAULT_TOLERANCES, InstabilityError, Solution
 
 __all__ = [
     "Solver",
@@ -262,9 +262,9 @@ class Solver:
         raise NotImplementedError
 
     def invariant_tolerances(self) -> dict:
-        """Tolerances of the invariant check (:func:`persson_fp.solution.check_invariants`) for this run.
+        """Tolerances of the invariant check (:func:`persson_fp.results.solution.check_invariants`) for this run.
 
-        Tied to the requested accuracy: the defaults (``persson_fp.solution.DEFAULT_TOLERANCES``:
+        Tied to the requested accuracy: the defaults (``persson_fp.results.solution.DEFAULT_TOLERANCES``:
         load drift 1e-2, A* growth 1e-6 relative), loosened to 100 x ``rtol`` (load) and 10 x ``rtol``
         (A*) for a method run at a looser tolerance than that.
         """
@@ -401,7 +401,7 @@ class Solver:
     def zeta_from_V(self, V_target) -> np.ndarray:
         """Magnification at which V reaches ``V_target`` (1 where V <= 0, zeta_max beyond V(zeta_max)).
 
-        The spectrum's closed-form inverse (:meth:`persson_fp.spectrum.PSD.zeta_of_V`), vectorised.
+        The spectrum's closed-form inverse (:meth:`persson_fp.surfaces.psd.PSD.zeta_of_V`), vectorised.
         """
         V = np.atleast_1d(np.asarray(V_target, dtype=float))
         return np.atleast_1d(self.problem.psd.zeta_of_V(V, self.problem.E_star))

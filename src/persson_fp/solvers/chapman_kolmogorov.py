@@ -76,9 +76,9 @@ import numpy as np
 from scipy.signal import fftconvolve
 from scipy.special import erf, erfc, erfcx
 
-from .. import fudge as _fudge
-from ..solution import SolverError
-from .base import Solver, SolverOutput, check_float, check_int
+from persson_fp.results.solution import SolverError
+from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
+from persson_fp.theory import fudge as _fudge
 
 __all__ = ["ChapmanKolmogorovSolver"]
 

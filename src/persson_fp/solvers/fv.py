@@ -84,12 +84,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..exact import tail_mass
-from ..fudge import NoFudge
-from ..solution import InstabilityError
-from . import moving_wall
-from .base import Solver, SolverOutput, check_float, check_int
-from .fv_operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
+from persson_fp.results.solution import InstabilityError
+from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
+from persson_fp.solvers.engine import moving_wall
+from persson_fp.solvers.fv_operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
     _BDF2_A,
     _BDF2_B,
     _BDF2_W,
@@ -103,8 +101,10 @@ from .fv_operators import (  # noqa: F401  (re-exported: the operators are part 
     rhs,
     wall_flux,
 )
-from .fv_spectral import SpectralPath, _amplification, _growth, dst_eigenvalues  # noqa: F401
-from .fv_stepping import STEPPINGS, SteppingNodes
+from persson_fp.solvers.fv_spectral import SpectralPath, _amplification, _growth, dst_eigenvalues  # noqa: F401
+from persson_fp.solvers.fv_stepping import STEPPINGS, SteppingNodes
+from persson_fp.theory.fudge import NoFudge
+from persson_fp.theory.image import tail_mass
 
 __all__ = ["FiniteVolumeSolver", "SCHEMES", "rhs", "banded_operator", "apply_operator", "dst_eigenvalues"]
 
@@ -248,7 +248,7 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
     # -- the run ---------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
-        if pr.moving_wall or pr.general:  # the general engine (persson_fp.solvers.moving_wall, .engine)
+        if pr.moving_wall or pr.general:  # the general engine (persson_fp.solvers.engine.moving_wall, .engine)
             return self._solve_moving_wall()
         scheme = SCHEMES[o["scheme"]]
         coupling = scheme.coupling if o["coupling"] == "auto" else o["coupling"]

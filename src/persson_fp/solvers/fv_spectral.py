@@ -50,9 +50,9 @@ from __future__ import annotations
 import numpy as np
 from scipy import fft as _fft
 
-from ..fudge import NoFudge
-from ..solution import InstabilityError
-from .fv_operators import _BDF2_A, _BDF2_B, _BDF2_W, _GAMMA, SPACES
+from persson_fp.results.solution import InstabilityError
+from persson_fp.solvers.fv_operators import _BDF2_A, _BDF2_B, _BDF2_W, _GAMMA, SPACES
+from persson_fp.theory.fudge import NoFudge
 
 __all__ = ["dst_eigenvalues", "SpectralPath"]
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..fudge import NoFudge
+from persson_fp.theory.fudge import NoFudge
 
 __all__ = ["STEPPINGS", "SteppingNodes"]
 

@@ -59,19 +59,20 @@ grows like n_p^2 (the stability study).
 from __future__ import annotations
 
 import gc
-from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 from scipy.optimize import brentq
 from scipy.special import erf
 
-from ..exact import image_pdf
-from ..fudge import NoFudge
-from ..solution import SolverError
-from ..strip import strip_pdf
-from . import _ivp_march, moving_wall_lines
-from .base import _HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
+from persson_fp.results.solution import SolverError
+from persson_fp.solvers.base import _HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
+from persson_fp.solvers.engine import ivp_march as _ivp_march
+from persson_fp.solvers.engine import lines as moving_wall_lines
+from persson_fp.solvers.mol_grid import MOLSystem, laplacian, laplacian_readable, quadrature_weights
+from persson_fp.theory.fudge import NoFudge
+from persson_fp.theory.image import image_pdf
+from persson_fp.theory.strip import strip_pdf
 
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
 
@@ -83,67 +84,6 @@ _EXPLICIT = ("RK45", "RK23", "DOP853")
 _H_OVER_SIGMA = {2: 0.0085, 4: 0.085}
 """Automatic spacing h / sqrt(tau_first): L1 ~ 5e-6 at the first station on the reference problem."""
 _N_P_AUTO_MAX = 20001
-
-
-def laplacian(m: int, h: float, order: int = 2) -> sp.csr_matrix:
-    """d^2/dp^2 on the ``m`` interior nodes with P = 0 at both walls (1/pressure^2).
-
-    ``order=4`` closes the five-point stencil with the odd extension about
-    each wall (ghost P_{-1} = -P_1), see the module docstring.
-    """
-    if order == 2:
-        L = sp.diags([np.ones(m - 1), -2.0 * np.ones(m), np.ones(m - 1)], [-1, 0, 1], shape=(m, m))
-        return (L / h**2).tocsr()
-    d0 = -30.0 * np.ones(m)
-    d0[0] += 1.0  # ghost -P_1 enters with weight -1: -(-P_1)
-    d0[-1] += 1.0
-    L = sp.diags(
-        [-np.ones(m - 2), 16.0 * np.ones(m - 1), d0, 16.0 * np.ones(m - 1), -np.ones(m - 2)],
-        [-2, -1, 0, 1, 2],
-        shape=(m, m),
-    )
-    return (L / (12.0 * h**2)).tocsr()
-
-
-def laplacian_readable(P: np.ndarray, h: float, order: int = 2) -> np.ndarray:
-    """The same operator as :func:`laplacian`, written with ghost values on the last axis of ``P``."""
-    z = np.zeros(P.shape[:-1] + (1,))
-    if order == 2:
-        Q = np.concatenate([z, P, z], axis=-1)  # walls
-        return (Q[..., :-2] - 2.0 * Q[..., 1:-1] + Q[..., 2:]) / h**2
-    Q = np.concatenate([-P[..., :1], z, P, z, -P[..., -1:]], axis=-1)  # odd ghosts, walls
-    return (-Q[..., :-4] + 16.0 * Q[..., 1:-3] - 30.0 * Q[..., 2:-2] + 16.0 * Q[..., 3:-1] - Q[..., 4:]) / (12.0 * h**2)
-
-
-def quadrature_weights(n_p: int, h: float, order: int = 2) -> np.ndarray:
-    """Weights on all ``n_p`` nodes (pressure): trapezoid (order 2) or Gregory's 4th-order rule (order 4)."""
-    w = np.full(n_p, h)
-    if order == 2:
-        w[[0, -1]] = 0.5 * h
-    else:
-        end = h * np.array([3.0 / 8.0, 7.0 / 6.0, 23.0 / 24.0])
-        w[:3] = end
-        w[-3:] = end[::-1]
-    return w
-
-
-@dataclass
-class MOLSystem:
-    """The semi-discrete system handed to ``solve_ivp`` (exposed for tests and studies).
-
-    ``fun`` is the fast (sparse) right-hand side, ``fun_readable`` the plain
-    numpy one, ``jac`` the exact Jacobian (sparse) or None.
-    """
-
-    fun: object
-    fun_readable: object
-    jac: object
-    y0: np.ndarray
-    t0: float
-    t1: float
-    n_loads: int
-    m: int
-    augmented: bool
 
 
 class MethodOfLinesSolver(Solver):
@@ -178,7 +118,7 @@ class MethodOfLinesSolver(Solver):
 
     A constant hardness: the domain is [0, sigma_Y] (absorbing yield wall) and A_pl = (p_bar - F_el)/sigma_Y
     (the strip's load balance); with a fudge factor S sees A_el + A_pl.  A scale-dependent hardness (moving
-    wall): the front-fixed finite-volume fluxes of :mod:`persson_fp.solvers.moving_wall` on ``n_p`` cells
+    wall): the front-fixed finite-volume fluxes of :mod:`persson_fp.solvers.engine.moving_wall` on ``n_p`` cells
     (default 200), integrated in V by ``solve_ivp`` with a banded Jacobian, and the error estimated from a
     partner run on n_p / 2 cells.
     """

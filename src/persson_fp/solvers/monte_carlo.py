@@ -51,10 +51,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import fudge as _fudge
-from ..exact import area_from_tau
-from .base import Solver, SolverOutput, check_float, check_int
-from .chapman_kolmogorov import ChapmanKolmogorovSolver, _cell_erfc
+from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
+from persson_fp.solvers.chapman_kolmogorov import ChapmanKolmogorovSolver, _cell_erfc
+from persson_fp.theory import fudge as _fudge
+from persson_fp.theory.image import area_from_tau
 
 __all__ = ["MonteCarloSolver"]
 

@@ -1,0 +1,144 @@
+"""``persson-fp surface FILE``: from a measured surface to contact area, mean separation and stiffness.
+
+Reads a height map (``.npy``, or a text table of heights) or a contact.engineering power-spectrum CSV,
+prints the spectrum's convention, rms height and slope (checked against the height data), and writes for a
+range of loads, for every fudge model: the contact area A* (Xu et al. tutorial, ``eq:Area_Persson``), the
+mean separation u and the normal stiffness K = -dp/du (Persson, Phys. Rev. Lett. 99 (2007) 125502; Yang & Persson,
+J. Phys.: Condens. Matter 20 (2008) 215214) as a CSV with units and a PNG.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+
+import numpy as np
+
+FUDGES = ["none", "YP08", "WM17", "Xu24"]
+
+
+def add_parser(sub):
+    s = sub.add_parser("surface", help="measured surface -> A*, mean separation, stiffness (CSV + PNG)")
+    s.add_argument("file", help="height map (.npy, or text: whitespace/comma separated) or contact.engineering CSV")
+    s.add_argument("--size", type=float, nargs="+", default=None, help="physical size Lx [Ly] of a height map, length")
+    s.add_argument("--periodic", action="store_true", help="the height map is periodic (no detrending, no window)")
+    s.add_argument("--series", default="q/π × 2D PSD", help="contact.engineering series (default 'q/π × 2D PSD')")
+    s.add_argument("--H", type=float, default=None, help="1-D PSD series: Abel factor of this H (default: numerical)")
+    s.add_argument("--E-star", type=float, default=1.0, help="plane-strain modulus E/(1-nu^2), pressure (default 1)")
+    s.add_argument("--ratio-min", type=float, default=1e-3, help="smallest p_bar/sqrt(V) (default 1e-3)")
+    s.add_argument("--ratio-max", type=float, default=3.0, help="largest p_bar/sqrt(V) (default 3)")
+    s.add_argument("--n-loads", type=int, default=60, help="number of loads, log-spaced (default 60)")
+    s.add_argument(
+        "--weighting",
+        default="yang-persson",
+        choices=["yang-persson", "corrected-area"],
+        help="energy weighting of the fudge models (default yang-persson, the closer to BEM mean gaps)",
+    )
+    s.add_argument("--output", default="persson-fp-surface", help="folder for surface.csv / surface.png")
+    s.set_defaults(func=cmd_surface)
+    return s
+
+
+def _read(args):
+    from persson_fp.surfaces.readers import read_contact_engineering_csv, read_heightmap
+
+    path = args.file
+    if not os.path.exists(path):
+        raise ValueError(f"no such file {path!r}")
+    with open(path, "rb") as fh:
+        head = fh.read(4096)
+    if not path.endswith(".npy") and b"Data series" in head and b";" in head:
+        return read_contact_engineering_csv(path, series=args.series, H=args.H)
+    if args.size is None:
+        raise ValueError("--size Lx [Ly] (physical size of the height map) is required for a height map")
+    size = args.size[0] if len(args.size) == 1 else args.size
+    return read_heightmap(path, size, periodic=args.periodic)
+
+
+def cmd_surface(args) -> int:
+    import warnings
+
+    from persson_fp.problems.contact import ContactProblem
+    from persson_fp.results.exact import exact
+    from persson_fp.theory.separation import MeanSeparation
+
+    if not (0 < args.ratio_min < args.ratio_max) or not np.isfinite(args.ratio_max):
+        raise ValueError("--ratio-min and --ratio-max must satisfy 0 < min < max (finite)")
+    if args.n_loads < 2:
+        raise ValueError("--n-loads must be >= 2")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        surf = _read(args)
+    psd = surf.psd
+    desc = surf.describe()
+    print(desc)
+    for w in caught:
+        print(f"warning: {w.message}")
+    E = args.E_star
+    sV = float(np.sqrt(psd.V(E_star=E)))
+    ratio = np.geomspace(args.ratio_min, args.ratio_max, args.n_loads)
+    p_bar = ratio * sV
+    t0 = time.perf_counter()
+    A, u, K, law = {}, {}, {}, {}
+    for name in FUDGES:
+        f = None if name == "none" else name
+        A[name] = np.atleast_1d(exact(ContactProblem(psd, E, p_bar, f)).contact_area)
+        ms = MeanSeparation(psd, E, f, args.weighting)
+        u[name] = ms.mean_separation(p_bar)
+        K[name] = ms.stiffness(p_bar)
+        law[name] = ms.small_load_law()
+    wall = time.perf_counter() - t0
+    print(f"E* = {E:.6g}, V(zeta_max) = {sV**2:.6e}, sqrt(V) = {sV:.6e}; energy weighting {args.weighting!r}")
+    print(f"{'model':<6} {'u0 [length]':>13} {'beta':>11}   small-load law p_bar = beta E* exp(-u/u0)")
+    for name in FUDGES:
+        print(f"{name:<6} {law[name][0]:13.6e} {law[name][1]:11.5g}")
+    print(f"{args.n_loads} loads x {len(FUDGES)} models in {wall * 1e3:.1f} ms")
+    out = args.output
+    os.makedirs(out, exist_ok=True)
+    path = os.path.join(out, "surface.csv")
+    with open(path, "w", newline="") as fh:
+        for line in desc.splitlines():
+            fh.write(f"# {line}\n")
+        fh.write(
+            f"# E* = {E!r} (pressure); energy weighting {args.weighting!r}; units: p_bar in pressure, "
+            "A dimensionless, u in length, K in pressure/length (the file's length unit)\n"
+        )
+        cols = ["p_bar", "p_bar_over_sqrtV"]
+        cols += [f"A_{n}" for n in FUDGES] + [f"u_{n}" for n in FUDGES] + [f"K_{n}" for n in FUDGES]
+        fh.write(",".join(cols) + "\n")
+        for j in range(ratio.size):
+            vals = [p_bar[j], ratio[j]] + [A[n][j] for n in FUDGES] + [u[n][j] for n in FUDGES]
+            vals += [K[n][j] for n in FUDGES]
+            fh.write(",".join(f"{v:.12g}" for v in vals) + "\n")
+    fig = _figure(psd, ratio, p_bar, A, u, K, surf.source)
+    fig.savefig(os.path.join(out, "surface.png"), dpi=110)
+    print(f"written {path} and surface.png")
+    return 0
+
+
+def _figure(psd, ratio, p_bar, A, u, K, title):
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(2, 2, figsize=(10, 7.5), layout="constrained")
+    q = np.geomspace(psd.q_l, psd.q_s, 400)
+    ax[0, 0].loglog(q, psd.C(q), "k-")
+    ax[0, 0].loglog(psd.q, psd.values, "k.", ms=3)
+    ax[0, 0].set(
+        xlabel="q  [rad/length]",
+        ylabel="C(q)  [length$^4$]",
+        title=f"spectrum (rms slope {psd.rms_slope:.3g}, rms height {psd.rms_height:.3g})",
+    )
+    for n in FUDGES:
+        ax[0, 1].loglog(ratio, A[n], label=n)
+        ax[1, 0].semilogy(u[n], p_bar, label=n)
+        ax[1, 1].loglog(p_bar, K[n], label=n)
+    ax[0, 1].set(xlabel=r"$\bar p/\sqrt{V}$", ylabel="A*", title="contact area (eq:Area_Persson)")
+    ax[1, 0].set(
+        xlabel="mean separation u  [length]", ylabel=r"$\bar p$  [pressure]", title="load-separation (Persson 2007)"
+    )
+    ax[1, 1].set(xlabel=r"$\bar p$  [pressure]", ylabel="K = -dp/du  [pressure/length]", title="normal stiffness")
+    for a in ax.flat:
+        a.grid(lw=0.3, which="both")
+    ax[0, 1].legend(fontsize=8)
+    fig.suptitle(title, fontsize=10)
+    return fig

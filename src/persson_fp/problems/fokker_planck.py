@@ -1,0 +1,162 @@
+r"""Persson's equation with general Fokker--Planck coefficients.
+
+The Xu et al. tutorial derives Persson's diffusion equation as the forward Kolmogorov (Fokker--Planck) equation
+of the pressure process, Eq. 'E:Fokker_Planck_Forward':
+
+.. math::  \frac{\partial P}{\partial\zeta} = -\frac{\partial}{\partial p}\big[B_1(p,\zeta)P\big]
+           + \frac12\frac{\partial^2}{\partial p^2}\big[B_2(p,\zeta)P\big],
+
+and the homogenised theory is its special case :math:`B_1 = 0`, :math:`B_2 = dV/d\zeta` (the tutorial's
+Eq. 'eq:B2_xi_1').  :class:`FokkerPlanckProblem` lets a user model more than that -- a pressure-dependent diffusion
+(e.g. :math:`B_2 = (p/\bar p)^\alpha dV/d\zeta`) or a drift -- with the same walls: absorbing at p = 0 and, with a
+hardness, the yield wall of :mod:`persson_fp.theory.hardness`.  No closed form exists: ``"fv"`` and ``"mol"``
+solve it in conservative flux form, :math:`F = B_1P - \tfrac12\partial_p(B_2P)`, and report an error estimate with every
+result.
+
+This module imports no solver.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from persson_fp.problems.contact import ContactProblem
+
+__all__ = ["FokkerPlanckProblem"]
+
+
+class FokkerPlanckProblem(ContactProblem):
+    r"""A contact problem with general drift B1(p, zeta) and diffusion B2(p, zeta).
+
+    Parameters
+    ----------
+    psd, E_star, p_bar, hardness
+        As for :class:`~persson_fp.ContactProblem` (the spectrum sets V(zeta), the magnification range and the
+        default diffusion).
+    B1 : callable or None, pressure per unit zeta
+        Drift ``B1(p, zeta)``, vectorised in p (an array of pressures and a scalar zeta in, an array out).
+        ``None``: 0.
+    B2 : callable or None, pressure^2 per unit zeta
+        Diffusion ``B2(p, zeta) >= 0``, vectorised in p.  ``None``: the homogenised dV/dzeta.
+    fudge : None
+        Must be None (B2 says everything about the diffusion; multiply a fudge factor into B2 if wanted).
+
+    Raises
+    ------
+    ValueError
+        A coefficient that is not callable, not vectorised, non-finite or (B2) negative on the probe grid (33
+        pressures on [0, p_max] at 9 magnifications), naming the coefficient and where; a fudge factor (B2
+        already says everything about the diffusion; put S into B2 if wanted).
+
+    Notes
+    -----
+    The coefficients are checked again on every grid a solver evaluates them on (the same ``ValueError``).
+    ``pf.exact`` has no closed form for this problem; ``Solution.compare`` is replaced by the solver's error
+    estimate (``info["error_estimate"]``).
+    """
+
+    def __init__(
+        self,
+        psd,
+        E_star: float = 1.0,
+        p_bar=None,
+        B1: Callable | None = None,
+        B2: Callable | None = None,
+        hardness=None,
+        fudge=None,
+    ):
+        if fudge is not None:
+            raise ValueError(
+                "fudge must be None for a FokkerPlanckProblem: B2 defines the diffusion completely "
+                "(multiply a fudge factor into B2 if wanted)"
+            )
+        for name, f in (("B1", B1), ("B2", B2)):
+            if f is not None and not callable(f):
+                raise ValueError(f"{name} must be None or a callable {name}(p, zeta), got {f!r}")
+        object.__setattr__(self, "B1_fun", B1)
+        object.__setattr__(self, "B2_fun", B2)
+        super().__init__(psd, E_star=E_star, p_bar=p_bar, fudge=None, hardness=hardness)
+        zeta = np.geomspace(1.0, self.zeta_max, 9)
+        for z in zeta:
+            hi = float(self.sigma_Y(z)) if self.hardness is not None else self.p_max(8.0)
+            self.coefficients(np.linspace(0.0, hi, 33), z)
+
+    @property
+    def general(self) -> bool:
+        return True
+
+    def with_loads(self, p_bar) -> FokkerPlanckProblem:
+        """The same surface, coefficients and hardness with other load(s).
+
+        Parameters
+        ----------
+        p_bar : float or 1-D array, pressure
+            The new nominal pressure(s).
+
+        Returns
+        -------
+        FokkerPlanckProblem
+        """
+        return FokkerPlanckProblem(self.psd, self.E_star, p_bar, self.B1_fun, self.B2_fun, self.hardness)
+
+    def coefficients(self, p, zeta: float):
+        """The coefficients at pressures ``p`` and magnification ``zeta``, checked.
+
+        Parameters
+        ----------
+        p : array, pressure
+            Pressures (any shape).
+        zeta : float
+            Magnification.
+
+        Returns
+        -------
+        (ndarray, ndarray)
+            B1 (pressure per unit zeta) and B2 (pressure^2 per unit zeta), the shape of ``p``.
+
+        Raises
+        ------
+        ValueError
+            A non-finite value, a negative B2 or a coefficient that is not vectorised, naming where.
+        """
+        p = np.asarray(p, dtype=float)
+        z = float(zeta)
+        out = []
+        for name, f, default in (
+            ("B1", self.B1_fun, lambda: np.zeros(p.shape)),
+            ("B2", self.B2_fun, lambda: np.full(p.shape, float(self.dV_dzeta(z)))),
+        ):
+            if f is None:
+                val = default()
+            else:
+                try:
+                    val = np.asarray(f(p, z), dtype=float)
+                except (TypeError, ValueError, ArithmeticError) as err:
+                    raise ValueError(f"{name}(p, zeta) could not be evaluated at zeta = {z:.6g}: {err}") from None
+                if val.shape != p.shape:
+                    try:
+                        val = np.broadcast_to(val, p.shape).astype(float)
+                    except ValueError:
+                        raise ValueError(
+                            f"{name}(p, zeta) must be vectorised in p (shape {p.shape}), got shape {val.shape}"
+                        ) from None
+            bad = ~np.isfinite(val)
+            if name == "B2":
+                bad |= val < 0
+            if np.any(bad):
+                i = int(np.argmax(bad))
+                what = "finite and >= 0" if name == "B2" else "finite"
+                raise ValueError(
+                    f"{name} must be {what}: {name}(p = {p.flat[i]:.6g}, zeta = {z:.6g}) = {val.flat[i]!r}"
+                )
+            out.append(val)
+        return out[0], out[1]
+
+    def __repr__(self):
+        names = [
+            f"{k}={getattr(f, '__name__', 'callable')}" for k, f in (("B1", self.B1_fun), ("B2", self.B2_fun)) if f
+        ]
+        base = super().__repr__()
+        return base.replace("ContactProblem(", "FokkerPlanckProblem(", 1)[:-1] + ", " + ", ".join(names) + ")"

@@ -1,0 +1,165 @@
+"""The invariants every numerical solution of Persson's diffusion problem keeps, and the errors a breach raises.
+
+:func:`check_invariants` is called once per :class:`~persson_fp.Solution` (in ``Solution.build``): finite
+values, A* in [0, 1] and non-increasing (the Xu et al. tutorial, Eq. 'eq:Area'), the load balance
+(Eq. 'eq:Load_equilibrium'; with a hardness the plastic load counts) and P0 >= 0, each against a tolerance tied
+to the method's own accuracy.  A breach raises :class:`~persson_fp.SolverError` naming the invariant and the remedy.
+
+This module imports no solver.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+__all__ = ["SolverError", "InstabilityError", "DEFAULT_TOLERANCES", "check_invariants"]
+
+
+class SolverError(RuntimeError):
+    """A solver could not produce a trustworthy result: it failed, or its result breaks an invariant
+    (:func:`~persson_fp.results.solution.check_invariants`); the message names the invariant and the remedy."""
+
+
+class InstabilityError(SolverError):
+    """The discrete evolution went unstable (NaN, negative or growing mass, blow-up)."""
+
+
+DEFAULT_TOLERANCES = {"load": 1e-2, "area": 1e-6, "negative": 1e-2}
+"""Invariant tolerances of :func:`check_invariants` unless a method states its own
+(:meth:`persson_fp.solvers.base.Solver.invariant_tolerances`):
+
+- ``load``: relative load drift |int p P0 dp - p_bar| / p_bar (``eq:Load_equilibrium``), a float or an
+  array broadcasting to ``(n_zeta, n_loads)``; 1 % by default: a coarse grid may miss it by less (its
+  error is measured by :meth:`Solution.compare`), a result beyond it is not an answer;
+- ``area``: A* may leave [0, 1] by this much, and grow between stations by this much relative to A*
+  (contact is only lost, ``eq:Area``);
+- ``negative``: min P0 >= -negative x max P0 at every station and load (smaller undershoots, e.g. the
+  Gibbs ripple of a short sine series, are recorded and warned about only).
+"""
+
+_REMEDY = (
+    "refine the method (n_p, n_steps, rtol/tol), keep k_domain at its default, use method='sines' "
+    "or the closed form pf.exact, or pass check=False to inspect the result anyway"
+)
+
+
+def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
+    """Check the invariants every solution of Persson's diffusion problem keeps.
+
+    1. finite A* and load;
+    2. A* in [0, 1] and non-increasing in zeta (``eq:Area``: contact is only lost);
+    3. load balance int p P0 dp = p_bar (``eq:Load_equilibrium``; the absorbing wall at p = 0 keeps the
+       first moment);
+    4. P0 >= 0 up to the method's undershoot (fourth-order differences and truncated sine series are
+       not positivity preserving).
+
+    Parameters
+    ----------
+    sol : Solution
+    tolerances : dict, optional
+        Keys of ``DEFAULT_TOLERANCES`` (missing keys take the default).
+    raise_on_breach : bool
+        True: a breached invariant raises :class:`~persson_fp.SolverError` naming it and the remedy; False: a
+        ``RuntimeWarning`` with the same text (and ``info["warnings"]``).
+
+    Returns
+    -------
+    dict
+        ``min_P0``, ``negative_P0`` (any undershoot), ``area_increase`` (largest, relative to A*),
+        ``area_monotone``, ``max_load_drift`` (relative), ``breaches`` (names of the broken invariants).
+    """
+    tol = {**DEFAULT_TOLERANCES, **(tolerances or {})}
+    p_bar = sol.problem.p_bar
+    A = sol.contact_area_all  # (a model with more contact states checks each area and their sum here)
+    P = sol.P0_all
+    load = sol.load_all  # the supported load; a model with a yield wall adds its plastic share here
+    checks = {}
+    breaches = []  # (invariant, message)
+    where = _where(sol)
+
+    if not (np.all(np.isfinite(A)) and np.all(np.isfinite(load))):
+        breaches.append(("finite", "A* or the load is NaN or inf"))
+        A = np.nan_to_num(A, nan=np.inf)
+
+    # 2. A* in [0, 1], non-increasing (relative to A*, so that tiny loads are checked as closely)
+    checks["area_range"] = (float(np.min(A)), float(np.max(A)))
+    bad = (A < -tol["area"]) | (A > 1.0 + tol["area"])
+    if np.any(bad):
+        i, j = np.argwhere(bad)[0]
+        breaches.append(("area_range", f"A* = {A[i, j]:.6g} outside [0, 1] at {where(i, j)}"))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rel_inc = np.diff(A, axis=0) / np.maximum(np.abs(A[:-1]), np.finfo(float).tiny)
+    rel_inc = np.nan_to_num(rel_inc, nan=np.inf)
+    checks["area_increase"] = float(max(np.max(rel_inc, initial=0.0), 0.0))
+    checks["area_monotone"] = checks["area_increase"] <= tol["area"]
+    if not checks["area_monotone"]:
+        i, j = np.unravel_index(np.argmax(rel_inc), rel_inc.shape)
+        breaches.append(
+            (
+                "area_monotone",
+                f"A* grows by {rel_inc[i, j]:.3e} (relative, > {tol['area']:.1e}) up to {where(i + 1, j)} "
+                "(contact can only be lost, eq:Area)",
+            )
+        )
+
+    # 3. load balance
+    with np.errstate(invalid="ignore", over="ignore"):
+        drift = np.abs(load - p_bar) / p_bar
+    drift = np.nan_to_num(drift, nan=np.inf)
+    tol_load = np.broadcast_to(np.asarray(tol["load"], dtype=float), drift.shape)
+    checks["max_load_drift"] = float(np.max(drift))
+    # general coefficients: a drift B1 moves the load, so the balance is no law of the equation there
+    over = (drift > tol_load) & (not getattr(sol.problem, "general", False))
+    if np.any(over):
+        i, j = np.unravel_index(np.argmax(np.where(over, drift / tol_load, -np.inf)), drift.shape)
+        breaches.append(
+            (
+                "load_balance",
+                f"int p P0 dp deviates from p_bar by {drift[i, j]:.3e} (relative, > {tol_load[i, j]:.1e}) at "
+                f"{where(i, j)} (eq:Load_equilibrium)",
+            )
+        )
+
+    # 4. P0 >= 0 (small undershoots are reported, large ones are breaches)
+    peak = np.max(np.abs(P), axis=-1) if P.shape[-1] else np.zeros(A.shape)
+    low = np.min(P, axis=-1) if P.shape[-1] else np.zeros(A.shape)
+    checks["min_P0"] = float(np.min(low)) if low.size else 0.0
+    checks["negative_P0"] = bool(np.any(low < -1e-10 * np.max(peak, initial=0.0)))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rel_neg = np.where(peak > 0, -low / np.where(peak > 0, peak, 1.0), 0.0)
+    if np.any(rel_neg > tol["negative"]):
+        i, j = np.unravel_index(np.argmax(rel_neg), rel_neg.shape)
+        breaches.append(
+            (
+                "positivity",
+                f"P0 dips to {low[i, j]:.3e} = -{rel_neg[i, j]:.2e} x its peak (> {tol['negative']:.1e}) at "
+                f"{where(i, j)} (oscillations: refine, or use an L-stable scheme)",
+            )
+        )
+    elif checks["negative_P0"]:
+        msg = f"P0 has negative values down to {checks['min_P0']:.3e} (oscillations: refine or use an L-stable scheme)"
+        sol.info.setdefault("warnings", []).append(msg)
+        warnings.warn(f"{sol.method}: {msg}", RuntimeWarning, stacklevel=6)
+
+    checks["breaches"] = [name for name, _ in breaches]
+    if breaches:
+        text = f"{sol.method}: invariant(s) broken: " + "; ".join(f"{n}: {m}" for n, m in breaches) + f". {_REMEDY}"
+        if raise_on_breach:
+            raise SolverError(text)
+        sol.info.setdefault("warnings", []).append(text)
+        warnings.warn(text, RuntimeWarning, stacklevel=6)
+    return checks
+
+
+def _where(sol):
+    """A formatter of (station, load) indices for messages."""
+
+    def fmt(i, j):
+        s = f"zeta = {sol.zeta[i]:.6g}"
+        if sol.problem.n_loads > 1 or not sol.problem.scalar_load:
+            s += f", p_bar = {sol.problem.p_bar[j]:.6g}"
+        return s
+
+    return fmt

@@ -1,0 +1,1 @@
+"""Adapters to third-party PDE packages (py-pde, FiPy), imported only when their method is chosen."""

@@ -1,0 +1,399 @@
+r"""A scale-dependent hardness: the moving yield wall, front-fixed onto the general engine.
+
+The physics (Persson, Phys. Rev. Lett. 87 (2001) 116101; Surf. Sci. Rep. 61 (2006) 201, Sec. 3).  On
+:math:`0 < p < \sigma_Y(\zeta)` the PDF obeys :math:`\partial_\tau P = \tfrac12\partial_p^2 P` in the effective
+variance :math:`d\tau = S(A)\,dV` (A = A_el + A_pl, the total contact area), absorbing at p = 0.  Where the wall
+moves (:math:`\sigma_Y' > 0`) the PDF does not vanish at it: area balance gives
+:math:`dA_{pl}/d\tau = -\dot\sigma P(\sigma_Y) - \tfrac12\partial_pP(\sigma_Y)` and the load balance
+:math:`F_{el} + \sigma_Y A_{pl} = \bar p` then requires :math:`P(\sigma_Y) = 2\dot\sigma A_{pl}`
+(:math:`\dot\sigma = d\sigma_Y/d\tau`): the plastic area sits at the wall and is handed back into the elastic
+domain as the wall moves out.  No closed form exists.
+
+*Front fixing.*  With :math:`x = p/s`, :math:`s(\tau) = \sigma_Y(\zeta(\tau))` and the mass density in x,
+:math:`w(x, \tau) = s\,P(sx, \tau)`, the domain is fixed, :math:`x \in [0, 1]`, and the equation is conservative:
+
+.. math::  \partial_\tau w = \partial_x\Big(\frac{1}{2s^2}\partial_x w + \frac{\dot s}{s}\,x\,w\Big),
+           \qquad w(0) = 0, \qquad w(1) = 2 s\dot s\,A_{pl}, \qquad \frac{dA_{pl}}{d\tau} = G(1),
+
+G being the flux through x = 1: exactly the engine's yield wall (:mod:`persson_fp.solvers.engine.fluxes`) with
+:math:`\beta = 2s\dot s`.  The independent variable is V (known in closed form along the spectrum), so with
+:math:`d\tau = S\,dV`: :math:`D = S/(2s^2)`, :math:`v = (s_V/s)\,x`, :math:`\beta = 2 s s_V / S`,
+:math:`s_V = \sigma_Y'(\zeta)/V'(\zeta)`.  Second order in x and V on a fixed grid, no cut cells; the areas balance
+to round-off; the load balance is met to the discretisation error (reported).
+
+*Start.*  At a small :math:`\zeta_0` the PDF has not reached the wall; the start is the strip solution at
+:math:`\sigma_Y(\zeta_0)` and the elastic effective variance (its plastic area, ~0, is reported as
+``start_plastic_area``).
+
+*Error estimate.*  No closed form, so each run is paired with one at half the cells and half the steps;
+the Richardson estimate of the fine run's error is :math:`|Q_h - Q_{2h}|/3` for every area and load at every
+station (``info["error_estimate"]``); the observed order is measured in the tests and in
+``benchmarks/plasticity.py``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from persson_fp.problems.contact import ContactProblem
+from persson_fp.results.solution import SolverError
+from persson_fp.solvers.engine import fluxes as engine
+from persson_fp.theory.fudge import NoFudge
+from persson_fp.theory.strip import strip_cdf, strip_quantities
+
+__all__ = ["MovingWall", "richardson"]
+
+_GRADE = 0.05
+"""Steps uniform in u = V + _GRADE V_end ln V (geometric while V is small, then uniform)."""
+
+
+class MovingWall:
+    """The front-fixed moving-wall problem on ``n`` cells in x for every load of ``problem``.
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        With a hardness (constant or not: a constant one gives beta = 0, the strip).
+    n : int
+        Cells in x = p / sigma_Y.
+    """
+
+    def __init__(self, problem: ContactProblem, n: int, k_domain: float = 10.0):
+        self.problem = problem
+        self.n = n
+        self.h = 1.0 / n
+        self.x_faces = np.linspace(0.0, 1.0, n + 1)
+        self.x = 0.5 * (self.x_faces[1:] + self.x_faces[:-1])
+        self.no_fudge = isinstance(problem.fudge, NoFudge)
+        self.general = problem.general
+        self.elastic = ContactProblem(problem.psd, problem.E_star, problem.p_bar, problem.fudge)
+        # without a hardness the far wall is the end of the numerical domain (what it absorbs is reported as lost)
+        self.p_end = problem.p_max(k_domain) if problem.hardness is None else None
+        self._cache = {}
+        self._coef_cache = {}
+
+    # -- the wall along V --------------------------------------------------------------------------------
+    def zeta(self, V):
+        pr = self.problem
+        return np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))
+
+    def wall_many(self, V):
+        """(s, s_V) arrays at complete-contact variances V: sigma_Y and d sigma_Y / dV (pressure, 1/pressure)."""
+        pr = self.problem
+        if pr.hardness is None:
+            V = np.atleast_1d(np.asarray(V, dtype=float))
+            return np.full(V.shape, self.p_end), np.zeros(V.shape)
+        z = self.zeta(V)
+        s = pr.hardness.sigma(z)
+        dV = pr.dV_dzeta(z)
+        sV = np.where(dV > 0, pr.hardness.dsigma_dzeta(z) / np.where(dV > 0, dV, 1.0), 0.0)
+        return s, sV
+
+    def wall(self, V):
+        """(s, s_V) at one V, from the cache that :meth:`prefill` fills (vectorised) for a march's stage times."""
+        hit = self._cache.get(V)
+        if hit is None:
+            s, sV = self.wall_many(np.array([V]))
+            hit = self._cache[V] = (float(s[0]), float(sV[0]))
+        return hit
+
+    def prefill(self, V_nodes):
+        """Evaluate the wall at every stage time of a march over ``V_nodes`` at once (the engine's expressions)."""
+        t, dt = V_nodes[:-1], np.diff(V_nodes)
+        pts = np.concatenate([V_nodes, t + engine.GAMMA * dt, t + dt, t + 0.5 * dt, (t + 0.5 * dt) + 0.5 * dt])
+        s, sV = self.wall_many(pts)
+        self._cache.update(zip(pts.tolist(), zip(s.tolist(), sV.tolist())))
+
+    def coefficients(self, V, S_bar):
+        """Engine coefficients at V with the fudge factor frozen at ``S_bar`` (m,)."""
+        if self.general:
+            return self._general_coefficients(V)
+        s, sV = self.wall(V)
+        m = self.problem.n_loads
+        S_bar = np.broadcast_to(np.asarray(S_bar, dtype=float), (m,))
+        D = (S_bar / (2.0 * s * s))[:, None] * np.ones(self.n + 1)
+        v = np.broadcast_to((sV / s) * self.x_faces, (m, self.n + 1))
+        return engine.Coefficients(D=D, v=v, beta=2.0 * s * sV / S_bar)
+
+    def _general_coefficients(self, V):
+        r"""Front-fixed form of :math:`\partial_V P = -\partial_p(b_1P) + \tfrac12\partial_p^2(b_2P)`, b = B / V'(zeta):
+        the diffusive flux :math:`-\partial_x(D w)` with :math:`D = b_2/(2s^2)` at the cells (``D_cells``, the
+        Fokker--Planck form), the drift :math:`v = (s_V/s)x - b_1/s` at the faces, :math:`\beta = 2 s s_V / b_2(s)`.
+        Cached per V."""
+        hit = self._coef_cache.get(V)
+        if hit is not None:
+            return hit
+        pr = self.problem
+        s, sV = self.wall(V)
+        z = float(self.zeta(V)[0])
+        dVdz = float(pr.dV_dzeta(z))
+        B1f, B2f = pr.coefficients(s * self.x_faces, z)
+        _, B2c = pr.coefficients(s * self.x, z)
+        b1f, b2f, b2c = B1f / dVdz, B2f / dVdz, B2c / dVdz
+        v = (sV / s) * self.x_faces - b1f / s
+        if sV > 0 and not b2f[-1] > 0:
+            raise ValueError(f"B2 must be > 0 at a moving yield wall (p = {s:.6g}, zeta = {z:.6g}), got {B2f[-1]!r}")
+        beta = 2.0 * s * sV / b2f[-1] if sV > 0 else 0.0
+        m = pr.n_loads
+        c = engine.Coefficients(
+            D=np.broadcast_to(b2f / (2.0 * s * s), (m, self.n + 1)),
+            v=np.broadcast_to(v, (m, self.n + 1)),
+            beta=np.full(m, beta),
+            D_cells=np.broadcast_to(b2c / (2.0 * s * s), (m, self.n)),
+        )
+        self._coef_cache[V] = c
+        return c
+
+    # -- start, nodes -----------------------------------------------------------------------------------
+    def start(self, V0):
+        """The state y0 (m, n + 1) at V0: the strip's cell averages at sigma_Y(zeta(V0)) and the elastic tau."""
+        pr = self.problem
+        s0, _ = self.wall(V0)
+        tau0 = np.asarray(self.elastic.tau_of_V(np.array([V0])), dtype=float).reshape(pr.n_loads)
+        centre = pr.p_bar
+        if self.general:  # a Gaussian with the local coefficients at p_bar: mean p_bar + b1 V0, variance b2 V0
+            z0 = float(self.zeta(V0)[0])
+            B1, B2 = pr.coefficients(pr.p_bar, z0)
+            dVdz = float(pr.dV_dzeta(z0))
+            centre = pr.p_bar + B1 / dVdz * V0
+            tau0 = np.maximum(B2 / dVdz * V0, 1e-300)
+        edges = s0 * self.x_faces
+        F = strip_cdf(edges[None, :], centre[:, None], s0, tau0[:, None])
+        q = strip_quantities(centre, s0, tau0)
+        y0 = np.empty((pr.n_loads, self.n + 1))
+        y0[:, :-1] = np.diff(F, axis=-1) / self.h  # w = s P: its cell average in x is the p-cell mass / h
+        y0[:, -1] = q["plastic_area"]
+        return y0, q["noncontact_area"], q["plastic_area"]
+
+    def choose_V0(self, V_first: float, tau0_fraction: float):
+        """Start where sqrt(tau) spans ~3 cells of the wall's grid, at most ``tau0_fraction`` of the first
+        station's V (in V; tau ~ S(1) V there)."""
+        s1, _ = self.wall(V_first)
+        target = max(9.0 * (s1 * self.h) ** 2, 1e-6 * V_first)
+        return float(min(target, tau0_fraction * V_first))
+
+    @staticmethod
+    def nodes(V0: float, V_st: np.ndarray, n_steps: int):
+        """V nodes from V0 through every station (graded, see ``_GRADE``) and the station indices."""
+        V_all = np.concatenate(([V0], V_st))
+        g = _GRADE * V_all[-1]
+        u = V_all + g * np.log(V_all)
+        counts = np.maximum(1, np.round(n_steps * np.diff(u) / (u[-1] - u[0])).astype(int))
+        pieces, idx = [np.array([V0])], []
+        for i in range(V_st.size):
+            uu = np.linspace(u[i], u[i + 1], counts[i] + 1)[1:]
+            Vg = np.geomspace(V_all[i], V_all[i + 1], 2049)
+            ug = Vg + g * np.log(Vg)
+            seg = np.interp(uu, ug, Vg)
+            seg[-1] = V_all[i + 1]
+            pieces.append(seg)
+            idx.append(sum(len(p) for p in pieces) - 1)
+        return np.concatenate(pieces), np.array(idx)
+
+    # -- the march --------------------------------------------------------------------------------------
+    def solve(
+        self,
+        V_st,
+        n_steps: int,
+        scheme: str = "tr-bdf2",
+        coupling: str = "predictor",
+        damped: int = 2,
+        tau0_fraction: float = 0.05,
+        V0: float | None = None,
+        y0=None,
+        source=None,
+    ):
+        """March from the start (at ``V0``, default :meth:`choose_V0`) through the stations ``V_st``;
+        a dict of per-station arrays."""
+        pr = self.problem
+        S = pr.fudge.S
+        m, h = pr.n_loads, self.h
+        if V0 is None:
+            V0 = self.choose_V0(float(V_st[0]), tau0_fraction)
+        if y0 is None:
+            y, A_non0, A_pl0 = self.start(V0)
+        else:  # a given start (cell averages of w and the wall mass), e.g. a manufactured solution
+            y, A_non0, A_pl0 = np.array(y0, dtype=float), np.zeros(m), np.asarray(y0, dtype=float)[:, -1]
+        V_nodes, st_idx = self.nodes(V0, np.asarray(V_st, dtype=float), n_steps)
+        self.prefill(V_nodes)
+        n_st = len(V_st)
+        W = np.empty((n_st, m, self.n))
+        A_pl = np.empty((n_st, m))
+        A_non = np.empty((n_st, m))
+        s_st = np.empty(n_st)
+        absorbed = np.zeros(m)
+        peclet = 0.0
+        k_st = 0
+        for k in range(V_nodes.size - 1):
+            Va, Vb = V_nodes[k], V_nodes[k + 1]
+            dV = Vb - Va
+            if self.no_fudge:
+                S_bar = np.ones(m)
+            else:  # S at the total contact area A_el + A_pl = 1 - A_non
+                A_now = np.clip(1.0 - A_non0 - absorbed, 0.0, 1.0)
+                Sn = S(A_now)
+                if coupling == "lagged":
+                    S_bar = Sn
+                else:
+                    out_rate = engine.outflux_low(self.coefficients(Va, np.ones(m)), y, h)  # per unit tau
+                    S_bar = 0.5 * (Sn + S(np.clip(A_now - dV * Sn * out_rate, 0.0, 1.0)))
+            coef = lambda V, S_bar=S_bar: self.coefficients(V, S_bar)  # noqa: E731
+            y, j = engine.step(coef, Va, dV, y, h, "be-halves" if k < damped else scheme, source)
+            absorbed += j
+            c = coef(Vb)
+            peclet = max(peclet, float(np.max(np.abs(c.v[:, -1]) * h / np.max(c.D))))
+            if not np.all(np.isfinite(y)):
+                raise SolverError(f"moving wall: non-finite values at V = {Vb:.6g}; raise n_steps")
+            while k_st < n_st and k + 1 == st_idx[k_st]:
+                W[k_st] = y[:, :-1]
+                A_pl[k_st] = y[:, -1]
+                A_non[k_st] = A_non0 + absorbed
+                s_st[k_st] = self.wall(Vb)[0]
+                k_st += 1
+        A_el = W.sum(axis=-1) * h
+        F_el = s_st[:, None] * (W @ self.x) * h
+        return {
+            "W": W,
+            "s": s_st,
+            "elastic_area": A_el,
+            "plastic_area": A_pl,
+            "noncontact_area": A_non,
+            "elastic_load": F_el,
+            "plastic_load": s_st[:, None] * A_pl,
+            "V0": V0,
+            "zeta0": float(self.zeta(V0)[0]),
+            "start_plastic_area": float(np.max(A_pl0)),
+            "steps": V_nodes.size - 1,
+            "max_cell_peclet": peclet,
+        }
+
+
+def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0) -> None:
+    """``ValueError`` unless the PDF spans at least one cell of the stretched grid at every station:
+    sqrt(tau) >= sigma_Y / n, tau taken as S(1) V (its largest value before contact is lost)."""
+    mw = MovingWall(problem, n, k_domain)
+    s, _ = mw.wall_many(V_st)
+    S1 = float(problem.fudge.S(np.array(1.0)))
+    need = s / n
+    have = np.sqrt(S1 * V_st)
+    bad = have < need
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ValueError(
+            f"moving wall: the PDF at zeta = {zeta_st[i]:.6g} (width sqrt(tau) ~ {have[i]:.3e}) is narrower than "
+            f"one cell of the grid on [0, sigma_Y] = [0, {s[i]:.4g}] with n_p = {n}; raise n_p to >= "
+            f"{int(np.ceil(n * float(np.max(need / have))))} or start zeta_out later"
+        )
+
+
+_QUANTITIES = ("elastic_area", "plastic_area", "noncontact_area", "elastic_load", "plastic_load")
+
+
+def richardson(fine: dict, coarse: dict, order: float = 2.0) -> dict:
+    """Richardson estimate of the fine run's error, |Q_h - Q_2h| / (2^order - 1), per quantity (n_st, m)."""
+    f = 2.0**order - 1.0
+    return {q: np.abs(fine[q] - coarse[q]) / f for q in _QUANTITIES}
+
+
+def solve_cells(
+    solver,
+    n: int,
+    n_steps: int,
+    scheme: str,
+    coupling: str,
+    damped: int,
+    tau0_fraction: float,
+    tol,
+    zeta0=None,
+    k_domain: float = 10.0,
+):
+    """The moving-wall run of ``"fv"``: (n, n_steps) and its Richardson partner (n/2, n_steps/2)."""
+    pr = solver.problem
+    fine, coarse = run_pair(
+        solver,
+        n,
+        zeta0,
+        k_domain,
+        lambda mw, V_st, V0, level: mw.solve(
+            V_st, max(n_steps // 2**level, 2), scheme, coupling, damped, tau0_fraction, V0
+        ),
+    )
+    what = f"|Q(n_p, n_steps) - Q(n_p/2, n_steps/2)|, n_p = {n}, n_steps = {n_steps} (conservative)"
+    info = {
+        "steps": fine["steps"],
+        "scheme": scheme,
+        "coupling": "exact (S = 1)" if isinstance(pr.fudge, NoFudge) else coupling,
+    }
+    return finish(solver, n, fine, coarse, what, tol, info)
+
+
+def run_pair(solver, n: int, zeta0, k_domain: float, run):
+    """The run at n cells and its partner at n/2 from the same start: ``run(mw, V_st, V0, level)`` (level 0, 1)
+    returns the per-station dict of :meth:`MovingWall.solve`; the resolution is checked first."""
+    pr = solver.problem
+    V_st = np.asarray(solver.V_out, dtype=float)
+    check_resolved(pr, V_st, n, solver.zeta_out, k_domain)
+    fine = run(MovingWall(pr, n, k_domain), V_st, _start_V(pr, zeta0), 0)
+    coarse = run(MovingWall(pr, max(n // 2, 4), k_domain), V_st, fine["V0"], 1)
+    return fine, coarse
+
+
+def _start_V(pr, zeta0):
+    V0 = None if zeta0 is None else float(pr.V(zeta0))
+    if V0 is not None and V0 <= 0.0:
+        raise ValueError("zeta0 must be > 1 for a moving yield wall (the start is the PDF at zeta0, not the delta)")
+    return V0
+
+
+def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra: dict):
+    """Checks, error estimate and the :class:`~persson_fp.solvers.base.SolverOutput` of a moving-wall run."""
+    from persson_fp.solvers.base import SolverOutput
+
+    pr = solver.problem
+    est = richardson(fine, coarse, order=1.0)  # conservative: exact for first order, 3x over at second
+    Wf, Wc = fine["W"], coarse["W"]
+    if Wf.shape[-1] == 2 * Wc.shape[-1]:  # L1 of P: the fine cells averaged in pairs onto the coarse grid
+        est["L1"] = np.abs(0.5 * (Wf[..., 0::2] + Wf[..., 1::2]) - Wc).sum(axis=-1) / Wc.shape[-1]
+    else:
+        est["L1"] = np.full(fine["elastic_area"].shape, np.nan)
+    area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
+    area_residual = float(np.max(np.abs(area_sum - 1.0)))
+    if pr.general:  # a drift B1 moves the load: F_el + F_pl = p_bar is not a law of the general equation
+        load_residual = float("nan")
+    else:
+        load_residual = float(np.max(np.abs(fine["elastic_load"] + fine["plastic_load"] - pr.p_bar) / pr.p_bar))
+    if area_residual > 1e-10:
+        raise SolverError(
+            f"moving wall: the areas do not sum to 1 (residual {area_residual:.3e}): the conservative scheme broke; "
+            "this is a bug or an unstable step -- raise n_steps"
+        )
+    worst_area = max(float(np.max(est[q])) for q in ("elastic_area", "plastic_area", "noncontact_area"))
+    if tol is not None and (worst_area > tol or (np.isfinite(load_residual) and load_residual > tol)):
+        raise SolverError(
+            f"moving wall: the error estimate {worst_area:.3e} (areas, Richardson) or the load residual "
+            f"{load_residual:.3e} exceeds tol = {tol:.3g}; raise n_p and n_steps (both enter at second order)"
+        )
+    s = fine["s"]
+    p = s[:, None] * (np.arange(n) + 0.5)[None, :] / n
+    info = {
+        "grid": {"n_p": n, "mapping": "x = p / sigma_Y(zeta)", "p_max": s},
+        "zeta0": fine["zeta0"],
+        **info_extra,
+        "moving_wall": True,
+        "error_estimate": {**est, "method": what, "max_area": worst_area},
+        "area_residual": area_residual,
+        "load_residual": load_residual,
+        "start_plastic_area": fine["start_plastic_area"],
+        "far_wall_mass": float(np.max(fine["plastic_area"])) if pr.hardness is None else 0.0,
+        "max_cell_peclet": fine["max_cell_peclet"],
+    }
+    return SolverOutput(
+        p=p,
+        P0=fine["W"] / s[:, None, None],
+        weights=np.broadcast_to((s * (1.0 / n))[:, None], p.shape).copy(),
+        kind="cell",
+        info=info,
+        contact_area=fine["elastic_area"],
+        contact_area_flux=1.0 - fine["noncontact_area"] - (fine["plastic_area"] if pr.hardness is None else 0.0),
+        plastic_area=fine["plastic_area"] if pr.hardness is not None else None,
+    )

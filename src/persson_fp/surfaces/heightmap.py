@@ -1,0 +1,412 @@
+r"""Measured surfaces in: height maps, line scans, contact.engineering exports, SurfaceTopography objects.
+
+Every importer returns a :class:`~persson_fp.MeasuredSurface`: Persson's isotropic spectrum as a
+:class:`~persson_fp.TabulatedPSD` (convention ``"persson"``, :math:`\langle h^2\rangle =
+2\pi\int qC\,dq`, Xu et al. tutorial ``eq:variance_h_continuous``), the rms height and slope of the height data
+themselves, and notes on what was dropped.  The import compares the spectrum's rms height and slope with the
+height data's and warns when they differ by more than 1 %.  Conventions of the spectra read are those of
+Jacobs, Junge & Pastewka, Surf. Topogr.: Metrol. Prop. 5 (2017) 013001 (:mod:`persson_fp.surfaces.conventions`).
+
+Spectrum of a height map (periodic square or rectangle :math:`L_x\times L_y`, :math:`N_x\times N_y` points):
+:math:`\hat h_k = N^{-1}\sum h\,e^{-i q_k\cdot x}`, :math:`C(q_k) = \frac{L_xL_y}{(2\pi)^2}|\hat h_k|^2`, so
+that :math:`\langle h^2\rangle = \sum_k C(q_k)\,\Delta^2q` exactly.  Radial averaging: each annulus
+gets the mean of :math:`C(q_k)` over its modes, placed at their mean radius; the annuli are one lattice step
+wide at small q and log-spaced above (``bins_per_decade``), empty ones are merged into the next, and the band
+runs from the lowest annulus' inner edge to the highest one's outer edge (C continued there by the end
+segments' power laws).  On periodic self-affine test surfaces this keeps the rms height and slope of the
+spectrum within 1 % of the lattice sums (tests).
+The mean (q = 0) is dropped, and so are the modes beyond the inscribed Nyquist circle, whose annuli are
+incomplete; the notes give the share of :math:`\langle h^2\rangle` and :math:`\langle|\nabla h|^2\rangle` each
+of them carried.  Non-periodic data are detrended (plane) and windowed (Hann by default, normalised to keep the
+power).
+
+This module imports no solver and never imports SurfaceTopography
+(:func:`~persson_fp.from_surface_topography` only reads the object it is given).
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from persson_fp._validate import as_float_array, as_positive_scalar
+from persson_fp.surfaces.tabulated import TabulatedPSD
+
+__all__ = [
+    "MeasuredSurface",
+    "psd_from_heightmap",
+    "psd_from_profiles",
+]
+
+RMS_TOLERANCE = 0.01
+"""Relative difference of rms height or slope (spectrum vs height data) above which the import warns."""
+
+
+@dataclass(frozen=True)
+class MeasuredSurface:
+    """A surface imported from data.
+
+    Attributes
+    ----------
+    psd : TabulatedPSD
+        Persson's isotropic spectrum (q in rad/length, C in length^4).
+    source : str
+        What was read (``"height map"``, ``"line scans"``, ``"contact.engineering CSV"`` ...).
+    rms_height_data, rms_slope_data : float or None
+        rms height (length) and rms slope (dimensionless, full gradient :math:`\\sqrt{\\langle|\\nabla h|^2\\rangle}`)
+        of the height data after detrending, None where there are no heights (a PSD file).
+    notes : tuple of str
+        What the import dropped or assumed, one line each.
+    """
+
+    psd: TabulatedPSD
+    source: str
+    rms_height_data: float | None = None
+    rms_slope_data: float | None = None
+    notes: tuple = field(default_factory=tuple)
+
+    @property
+    def rms_errors(self) -> tuple[float, float] | None:
+        """(rms height, rms slope) of the spectrum relative to the height data, minus 1; None without heights."""
+        if self.rms_height_data is None:
+            return None
+        return self.psd.rms_height / self.rms_height_data - 1.0, self.psd.rms_slope / self.rms_slope_data - 1.0
+
+    def describe(self) -> str:
+        """A few lines for a report or a CSV header: source, convention, rms values, notes.
+
+        Returns
+        -------
+        str
+            Lines separated by newlines: the source, the spectrum's input convention and band (rad/length),
+            its rms height (length) and slope, the height data's with their relative differences, the notes.
+        """
+        p = self.psd
+        lines = [
+            f"source: {self.source}",
+            f"spectrum: Persson's isotropic C(q) (<h^2> = 2 pi int q C dq), input convention {p.convention!r}, "
+            f"{p.q.size} points, q in [{p.q_l:.6g}, {p.q_s:.6g}] rad/length",
+            f"rms height {p.rms_height:.6g} length, rms slope {p.rms_slope:.6g} (from the spectrum)",
+        ]
+        if self.rms_height_data is not None:
+            eh, es = self.rms_errors
+            lines.append(
+                f"height data: rms height {self.rms_height_data:.6g} ({eh:+.2%}), "
+                f"rms slope {self.rms_slope_data:.6g} ({es:+.2%})"
+            )
+        lines.extend(f"note: {n}" for n in self.notes)
+        return "\n".join(lines)
+
+
+def _check_rms(surface: MeasuredSurface) -> MeasuredSurface:
+    errs = surface.rms_errors
+    if errs is not None and max(abs(errs[0]), abs(errs[1])) > RMS_TOLERANCE:
+        warnings.warn(
+            f"the imported spectrum's rms height / slope differ from the height data's by {errs[0]:+.2%} / "
+            f"{errs[1]:+.2%} (more than {RMS_TOLERANCE:.0%}): the notes of the MeasuredSurface say what was dropped",
+            UserWarning,
+            stacklevel=3,
+        )
+    return surface
+
+
+def _size(size, ndim):
+    s = np.atleast_1d(np.asarray(size, dtype=float))
+    if s.size == 1:
+        s = np.repeat(s, ndim)
+    if s.size != ndim:
+        raise ValueError(f"size must be one length or {ndim} lengths (physical size of the data), got {size!r}")
+    return tuple(as_positive_scalar(v, "size") for v in s)
+
+
+def _window(n, kind):
+    if kind is None or kind == "none":
+        return np.ones(n)
+    if kind == "hann":
+        return np.hanning(n + 1)[:-1] if n > 1 else np.ones(1)  # periodic Hann: no zero at both ends
+    raise ValueError(f"window must be 'hann' or None, got {kind!r}")
+
+
+def _detrend(h, periodic):
+    h = h - h.mean()
+    if periodic:
+        return h
+    grids = np.meshgrid(*[np.arange(n) - (n - 1) / 2.0 for n in h.shape], indexing="ij")
+    X = np.stack([g.ravel() for g in grids], axis=1)
+    coef, *_ = np.linalg.lstsq(X, h.ravel(), rcond=None)
+    return h - (X @ coef).reshape(h.shape)
+
+
+def _rms_slope_data(h, size, periodic):
+    """rms of the full gradient: spectral for periodic data, centred differences otherwise."""
+    if periodic:
+        hk = np.fft.fftn(h) / h.size
+        q2 = sum(g**2 for g in _qgrid(h.shape, size))
+        return float(np.sqrt(np.sum(q2 * np.abs(hk) ** 2)))
+    g2 = 0.0
+    for axis, (n, L) in enumerate(zip(h.shape, size)):
+        g2 = g2 + np.mean(np.gradient(h, L / n, axis=axis) ** 2)
+    return float(np.sqrt(g2))
+
+
+def _qgrid(shape, size):
+    return np.meshgrid(*[2.0 * np.pi * np.fft.fftfreq(n, d=L / n) for n, L in zip(shape, size)], indexing="ij")
+
+
+def _radial_bins(q_mode, power, dq, q_max, bins_per_decade):
+    """Annuli one lattice step dq wide at small q, log-spaced above.
+
+    Returns (mean radius, power, edges) of the populated annuli (empty ones merged into the next)."""
+    r = 10.0 ** (1.0 / bins_per_decade)
+    edges = [0.5 * dq]
+    while edges[-1] < q_max:
+        step = max(dq, edges[-1] * (r - 1.0))
+        edges.append(min(edges[-1] + step, q_max))
+        if q_max - edges[-1] < 0.25 * step:
+            edges[-1] = q_max
+    edges = np.array(edges)
+    idx = np.searchsorted(edges, q_mode, side="right") - 1
+    ok = (idx >= 0) & (idx < edges.size - 1)
+    n = edges.size - 1
+    P = np.bincount(idx[ok], weights=power[ok], minlength=n)
+    count = np.bincount(idx[ok], minlength=n)
+    qsum = np.bincount(idx[ok], weights=q_mode[ok], minlength=n)
+    # merge empty annuli into the next populated one (their area goes with it)
+    keep_edges = [edges[0]]
+    q_out, P_out, n_out = [], [], []
+    acc_P = acc_n = acc_q = 0.0
+    for j in range(n):
+        acc_P += P[j]
+        acc_n += count[j]
+        acc_q += qsum[j]
+        if acc_n > 0 and (count[j] > 0):
+            b = edges[j + 1]
+            q_out.append(acc_q / acc_n)
+            P_out.append(acc_P)
+            n_out.append(acc_n)
+            keep_edges.append(b)
+            acc_P = acc_n = acc_q = 0.0
+    return np.array(q_out), np.array(P_out), np.array(keep_edges), np.array(n_out)
+
+
+def _table_with_edges(q_bin, C_bin, edges):
+    """Add the band's outer edges to the table (C continued by the end segments' power laws)."""
+    lq, lC = np.log(q_bin), np.log(C_bin)
+    lo = lC[0] + (lC[1] - lC[0]) / (lq[1] - lq[0]) * (np.log(edges[0]) - lq[0])
+    hi = lC[-1] + (lC[-1] - lC[-2]) / (lq[-1] - lq[-2]) * (np.log(edges[-1]) - lq[-1])
+    q = np.concatenate(([edges[0]], q_bin, [edges[-1]]))
+    C = np.concatenate(([np.exp(lo)], C_bin, [np.exp(hi)]))
+    keep = np.concatenate(([True], np.diff(q) > 0))
+    return q[keep], C[keep]
+
+
+def _spectrum_table(q_bin, P_bin, edges, notes, n_bin, cell):
+    """Annulus means C = power / (modes x cell area), annuli without power dropped, band edges added."""
+    tiny = P_bin <= 1e-30 * P_bin.max()
+    if np.sum(~tiny) < 2:
+        raise ValueError("fewer than 2 annuli carry power: the height data are too small or constant")
+    if np.any(tiny):
+        notes.append(f"{int(np.sum(tiny))} annuli without power (< 1e-30 of the largest) merged into their neighbours")
+        keep_e = np.concatenate(([True], ~tiny))
+        keep_e[np.flatnonzero(~tiny)[-1] + 2 :] = False  # the band ends at the last annulus with power
+        edges = edges[keep_e]
+        q_bin, P_bin = q_bin[~tiny], P_bin[~tiny]
+        n_bin = n_bin[~tiny]
+    return _table_with_edges(q_bin, P_bin / (n_bin * cell), edges[[0, -1]])
+
+
+def psd_from_heightmap(
+    heights,
+    size,
+    *,
+    periodic: bool = True,
+    window: str | None = "auto",
+    bins_per_decade: int = 20,
+    source: str = "height map",
+) -> MeasuredSurface:
+    r"""Persson's isotropic spectrum of a 2-D height map (see the module docstring).
+
+    Parameters
+    ----------
+    heights : array_like, shape (Nx, Ny), length
+        Heights on a uniform grid (finite; no missing points: fill or crop them first).
+    size : float or (float, float), length
+        Physical size :math:`L_x` (and :math:`L_y`) of the map.
+    periodic : bool
+        True for periodic data (simulated surfaces); False for measurements, which are then detrended
+        (plane) and windowed.
+    window : {"auto", "hann", None}
+        Window for non-periodic data ("auto": Hann when not periodic, none when periodic), normalised by
+        its mean square so that the power is kept.
+    bins_per_decade : int
+        Log-spaced annuli per decade of q above the region where they are one lattice step wide (>= 4).
+    source : str
+        Description stored in :attr:`MeasuredSurface.source <persson_fp.MeasuredSurface>`.
+
+    Returns
+    -------
+    MeasuredSurface
+        Persson's spectrum (q in rad/length of the unit of ``size``, C in length^4), the rms height and slope
+        of the data and notes on what was dropped; a ``UserWarning`` when the spectrum's rms height or slope
+        differs from the data's by more than 1 %.
+
+    Raises
+    ------
+    ValueError
+        ``heights`` not 2-D with >= 4 points per side or flat, ``size`` not > 0, ``bins_per_decade`` < 4, an
+        unknown ``window``.
+    """
+    h = as_float_array(heights, "heights")
+    if h.ndim != 2 or min(h.shape) < 4:
+        raise ValueError(f"heights must be a 2-D array with at least 4 points per side, got shape {h.shape}")
+    if not isinstance(bins_per_decade, (int, np.integer)) or bins_per_decade < 4:
+        raise ValueError(f"bins_per_decade must be an integer >= 4, got {bins_per_decade!r}")
+    Lx, Ly = _size(size, 2)
+    h = _detrend(h, periodic)
+    if np.all(h == 0):
+        raise ValueError("heights are flat (after removing the mean / plane): no roughness to import")
+    rms_h = float(np.sqrt(np.mean(h * h)))
+    rms_s = _rms_slope_data(h, (Lx, Ly), periodic)
+    if window == "auto":
+        window = None if periodic else "hann"
+    w = np.outer(_window(h.shape[0], window), _window(h.shape[1], window))
+    hw = h * w / np.sqrt(np.mean(w * w))
+    hk = np.fft.fft2(hw) / h.size
+    QX, QY = _qgrid(h.shape, (Lx, Ly))
+    qm = np.hypot(QX, QY).ravel()
+    dqx, dqy = 2.0 * np.pi / Lx, 2.0 * np.pi / Ly
+    power = (np.abs(hk) ** 2).ravel()  # sum = <h^2> of the windowed data
+    q_nyq = min(np.pi * h.shape[0] / Lx, np.pi * h.shape[1] / Ly)
+    total_h2 = power.sum()
+    total_g2 = np.sum(qm * qm * power)
+    inside = (qm > 0) & (qm <= q_nyq)
+    notes = []
+    out_h2 = power[~inside & (qm > 0)].sum() / total_h2
+    out_g2 = np.sum((qm * qm * power)[~inside]) / total_g2 if total_g2 > 0 else 0.0
+    notes.append("mean height (q = 0) removed" + ("" if periodic else ", plane detrended"))
+    if window:
+        notes.append(f"{window} window applied (normalised to keep the mean-square height)")
+    if out_h2 > 1e-12:
+        notes.append(
+            f"modes beyond the Nyquist circle q > {q_nyq:.6g} dropped: {out_h2:.2%} of <h^2>, {out_g2:.2%} of "
+            "<|grad h|^2>"
+        )
+    q_bin, P_bin, edges, n_bin = _radial_bins(qm[inside], power[inside], max(dqx, dqy), q_nyq, bins_per_decade)
+    q, C = _spectrum_table(q_bin, P_bin, edges, notes, n_bin, dqx * dqy)
+    psd = TabulatedPSD(q, C)
+    return _check_rms(MeasuredSurface(psd, source, rms_h, rms_s, tuple(notes)))
+
+
+def _decreasing_blocks(q, C, weight):
+    """Least-squares non-increasing fit of ln C (weights = bin widths, pool-adjacent-violators); one point per
+    block at the weighted mean ln q.  Returns (q, C, number of bins merged away)."""
+    blocks = []  # [sum w ln C, sum w, sum w ln q]
+    for lq, lc, w in zip(np.log(q), np.log(C), weight):
+        blocks.append([w * lc, w, w * lq])
+        while len(blocks) > 1 and blocks[-1][0] / blocks[-1][1] >= blocks[-2][0] / blocks[-2][1]:
+            a = blocks.pop()
+            for i in range(3):
+                blocks[-1][i] += a[i]
+    b = np.array(blocks)
+    return np.exp(b[:, 2] / b[:, 1]), np.exp(b[:, 0] / b[:, 1]), q.size - b.shape[0]
+
+
+def psd_from_profiles(
+    profiles,
+    length,
+    *,
+    periodic: bool = False,
+    window: str | None = "auto",
+    bins_per_decade: int = 20,
+    H: float | None = None,
+    source: str = "line scans",
+) -> MeasuredSurface:
+    r"""Persson's isotropic spectrum from line scans of an isotropic surface (1-D PSD, Abel-inverted).
+
+    The 1-D PSD (convention ``"1d"``, :math:`\langle h^2\rangle = \frac1\pi\int_0^\infty C^{1D}dq`) is
+    averaged over the scans and over power-conserving bins (one step :math:`2\pi/L` wide at small q,
+    log-spaced above), then converted by :func:`persson_fp.surfaces.conventions.to_persson`: numerically, or with
+    the Abel factor of ``H`` when given.  The rms slope of the data is reported as the full gradient
+    :math:`\sqrt2\,\mathrm{rms}(dh/dx)` (isotropy).
+
+    Parameters
+    ----------
+    profiles : array_like, shape (n,) or (n_scans, n), length
+        One profile or several parallel scans of equal length, uniformly sampled.
+    length : float, length
+        Physical length of each scan.
+    periodic, window, bins_per_decade
+        As in :func:`psd_from_heightmap` (default: not periodic, so each scan is detrended and Hann-windowed).
+    H : float, optional
+        Convert with the power-law Abel factor of this Hurst exponent instead of numerically
+        (:func:`persson_fp.surfaces.conventions.abel_factor`).
+    source : str
+        Description stored in :attr:`MeasuredSurface.source <persson_fp.MeasuredSurface>`.
+
+    Returns
+    -------
+    MeasuredSurface
+        Persson's isotropic spectrum (q in rad/length of the unit of ``length``, C in length^4), the rms height
+        and slope of the data and notes; a ``UserWarning`` when their rms values differ by more than 1 %.
+
+    Raises
+    ------
+    ValueError
+        ``profiles`` not 1-D or 2-D with >= 8 points, flat or too short to carry power in 3 bins, ``length``
+        not > 0, ``bins_per_decade`` < 4, an unknown ``window``.
+    """
+    z = as_float_array(profiles, "profiles")
+    if z.ndim == 1:
+        z = z[None, :]
+    if z.ndim != 2 or z.shape[1] < 8:
+        raise ValueError(f"profiles must be 1-D or (n_scans, n) with n >= 8 points, got shape {z.shape}")
+    if not isinstance(bins_per_decade, (int, np.integer)) or bins_per_decade < 4:
+        raise ValueError(f"bins_per_decade must be an integer >= 4, got {bins_per_decade!r}")
+    L = as_positive_scalar(length, "length")
+    n = z.shape[1]
+    x = np.arange(n) - (n - 1) / 2.0
+    z = z - z.mean(axis=1, keepdims=True)
+    if not periodic:
+        z = z - np.outer(z @ x / (x @ x), x)
+    if np.all(z == 0):
+        raise ValueError("profiles are flat (after removing the mean / tilt): no roughness to import")
+    rms_h = float(np.sqrt(np.mean(z * z)))
+    if periodic:
+        qk = 2.0 * np.pi * np.fft.fftfreq(n, d=L / n)
+        zk = np.fft.fft(z, axis=1) / n
+        rms_dx = float(np.sqrt(np.mean(np.sum(qk**2 * np.abs(zk) ** 2, axis=1))))
+    else:
+        rms_dx = float(np.sqrt(np.mean(np.gradient(z, L / n, axis=1) ** 2)))
+    if window == "auto":
+        window = None if periodic else "hann"
+    w = _window(n, window)
+    zk = np.fft.fft(z * w / np.sqrt(np.mean(w * w)), axis=1) / n
+    power = np.mean(np.abs(zk) ** 2, axis=0)  # sum over k = <h^2>
+    qk = 2.0 * np.abs(np.pi * np.fft.fftfreq(n, d=L / n))
+    notes = ["mean height removed from each scan" + ("" if periodic else ", tilt detrended")]
+    if window:
+        notes.append(f"{window} window applied (normalised to keep the mean-square height)")
+    notes.append(
+        "1-D PSD converted to Persson's isotropic C by "
+        + ("numerical Abel inversion" if H is None else f"the power-law Abel factor at H = {H}")
+        + " (assumes an isotropic surface)"
+    )
+    dq = 2.0 * np.pi / L
+    pos = qk > 0
+    q_bin, P_bin, edges, _ = _radial_bins(qk[pos], power[pos], dq, np.pi * n / L, bins_per_decade)
+    tiny = P_bin <= 1e-30 * P_bin.max()
+    if np.sum(~tiny) < 3:
+        raise ValueError("fewer than 3 bins carry power: the profiles are too short or constant")
+    width = np.diff(edges)
+    q1, C1 = q_bin[~tiny], (np.pi * P_bin / width)[~tiny]  # (1/pi) int_bin C1D dq = bin power
+    if H is None:
+        q1, C1, n_merged = _decreasing_blocks(q1, C1, width[~tiny])
+        if n_merged:
+            notes.append(
+                f"{n_merged} bins of the 1-D PSD merged (pool-adjacent-violators) so that it decreases, which the "
+                "numerical Abel inversion needs for C >= 0"
+            )
+    psd = TabulatedPSD(q1, C1, convention="1d", H=H)
+    return _check_rms(MeasuredSurface(psd, source, rms_h, np.sqrt(2.0) * rms_dx, tuple(notes)))
