@@ -98,6 +98,7 @@ from persson_fp.solvers.fv_operators import (  # noqa: F401  (re-exported: the o
     apply_mass,
     apply_operator,
     banded_operator,
+    march_result,
     rhs,
     wall_flux,
 )
@@ -450,22 +451,22 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
                 Af_out[st] = A0 - J0 + w_edge * dp * (P[:, 0] - P_edge0)
                 JN_out[st] = JN
                 st += 1
-        return {
-            "P_out": P_out,
-            "A_out": A_out,
-            "Af_out": Af_out,
-            "JN_out": JN_out,
-            "JN": JN,
-            "r_max": r_max,
-            "dtau_total": dtau_total,
-            "counters": {
+        return march_result(
+            P_out,
+            A_out,
+            Af_out,
+            JN_out,
+            JN,
+            r_max,
+            dtau_total,
+            {
                 "linalg": "banded",
                 "tridiagonal_solves": solver.solves,
                 "factorizations": solver.factorizations,
                 "picard_iterations": picard_iters,
                 "trajectory_sweeps": 0,
             },
-        }
+        )
 
     def _solve_moving_wall(self) -> SolverOutput:
         o = self.opts

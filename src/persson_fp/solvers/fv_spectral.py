@@ -51,7 +51,7 @@ import numpy as np
 from scipy import fft as _fft
 
 from persson_fp.results.solution import InstabilityError
-from persson_fp.solvers.fv_operators import _BDF2_A, _BDF2_B, _BDF2_W, _GAMMA, SPACES
+from persson_fp.solvers.fv_operators import _BDF2_A, _BDF2_B, _BDF2_W, _GAMMA, SPACES, march_result
 from persson_fp.theory.fudge import NoFudge
 
 __all__ = ["dst_eigenvalues", "SpectralPath"]
@@ -334,15 +334,15 @@ class SpectralPath:
         Af_out = A0 - J0 + w_edge * dp * (P_out[:, :, 0] - P_edge0)
         JN_out = contract(C0 * fun[:, 2], H[K])  # (n_st, m): the plastic area gained (with a hardness wall)
         JN = contract(C0 * fun[:, 2], H[-1:])[0]
-        return {
-            "P_out": P_out,
-            "A_out": A_out,
-            "Af_out": Af_out,
-            "JN_out": JN_out,
-            "JN": JN,
-            "r_max": r_max,
-            "dtau_total": np.broadcast_to(dts.sum(axis=0), (m,)).copy(),
-            "counters": {
+        return march_result(
+            P_out,
+            A_out,
+            Af_out,
+            JN_out,
+            JN,
+            r_max,
+            np.broadcast_to(dts.sum(axis=0), (m,)).copy(),
+            {
                 "linalg": "dst",
                 "transforms": sp.transforms,
                 "tridiagonal_solves": 0,
@@ -350,7 +350,7 @@ class SpectralPath:
                 "picard_iterations": 0,
                 "trajectory_sweeps": sweeps,
             },
-        }
+        )
 
     def _march_dst(self, P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge) -> dict:
         r"""The time loop of :meth:`_march_banded` in DST-II coefficient space (module docstring).
@@ -491,15 +491,15 @@ class SpectralPath:
                     Af_out[st] = A0 - J0 + w_edge * dp * (Pst[:, 0] - P_edge0)
                     JN_out[st] = JN
                     st += 1
-        return {
-            "P_out": P_out,
-            "A_out": A_out,
-            "Af_out": Af_out,
-            "JN_out": JN_out,
-            "JN": JN,
-            "r_max": r_max,
-            "dtau_total": dtau_total,
-            "counters": {
+        return march_result(
+            P_out,
+            A_out,
+            Af_out,
+            JN_out,
+            JN,
+            r_max,
+            dtau_total,
+            {
                 "linalg": "dst",
                 "transforms": sp.transforms,
                 "tridiagonal_solves": 0,
@@ -507,4 +507,4 @@ class SpectralPath:
                 "picard_iterations": picard_iters,
                 "trajectory_sweeps": 0,
             },
-        }
+        )
