@@ -1,0 +1,466 @@
+r"""Magnification-resolved contact and the distribution of interfacial gaps.
+
+**Magnification-resolved quantities** (Persson, Phys. Rev. Lett. 99 (2007) 125502; Lorenz & Persson, EPL 86 (2009)
+44006; Almqvist, Campañá, Prodanov, Persson, J. Mech. Phys. Solids 59 (2011) 2355).  At magnification
+:math:`\zeta` the surfaces touch in apparent contact regions of area fraction :math:`A(\zeta)` (the theory's
+:math:`A^*(\zeta)`, Xu, Li, Chen, Zhou tutorial ``eq:Area_Persson``, or a fudge model's corrected area), where the
+mean pressure is :math:`\bar p/A(\zeta)`.  :math:`\bar u(\zeta)` is the mean separation in those regions caused by
+the roughness finer than :math:`\zeta` (wavenumbers :math:`[\zeta q_l, q_s]`) under :math:`\bar p/A(\zeta)`: Persson
+2007's :math:`\bar u` (:mod:`persson_fp.theory.separation`, same weighting and fudge model) for the truncated
+spectrum, whose complete-contact variance at :math:`q` is :math:`V(q) - V(\zeta)`.  In the variable
+:math:`\sigma = \sqrt{V(q) - V(\zeta)}`,
+
+.. math::  \bar u(\zeta) = \frac{2}{E^*}\int_0^{\Sigma(\zeta)} \frac{g\big(\bar p/(A(\zeta)\sigma)\big)}{q(\sigma)}\,
+           d\sigma, \qquad \Sigma(\zeta) = \sqrt{V(\zeta_{max}) - V(\zeta)},
+
+with the universal function g of :mod:`persson_fp.theory.separation`.  The area lost between :math:`\zeta` and
+:math:`\zeta + d\zeta`, :math:`-A'd\zeta`, has the mean gap (Lorenz & Persson)
+:math:`u_1(\zeta) = \bar u + \bar u' A/A' = d(A\bar u)/dA`.
+
+Checked here (the formula for :math:`\bar u(\zeta)` is reconstructed from the papers' statements, not copied):
+:math:`\bar u(1) = \bar u(\bar p)` of :class:`~persson_fp.MeanSeparation` (tests: to 1e-6 relative),
+:math:`\bar u(\zeta_{max}) = 0`, and the identity :math:`\int_1^{\zeta_{max}}(-A')u_1\,d\zeta = \bar u(\bar p)`
+(it telescopes because :math:`A(1) = 1` and :math:`\bar u(\zeta_{max}) = 0`), which the discrete form below keeps
+exactly.
+
+**Gap distribution** (Almqvist et al. 2011):
+
+.. math::  P(u) = A(\zeta_{max})\,\delta(u) + \int_1^{\zeta_{max}} (-A'(\zeta))
+           \big[G(u - u_1; h_\zeta) + G(u + u_1; h_\zeta)\big]\,d\zeta, \quad u \ge 0,
+
+G the normal density of variance :math:`h_\zeta^2 = 2\pi\int_{\zeta q_l}^{q_s} qC\,dq` (the height variance of the
+roughness finer than :math:`\zeta`).  Each bracket is a folded normal of mass 1, so P is normalised by construction.
+Discretely: stations :math:`\zeta_k` (uniform in A, plus log-uniform in :math:`\zeta`), bin weights
+:math:`w_k = A_k - A_{k+1}` and centres :math:`c_k = (A_k\bar u_k - A_{k+1}\bar u_{k+1})/w_k`; then
+:math:`\sum w_k = 1 - A(\zeta_{max})` and :math:`\sum w_k c_k = \bar u(\bar p)` exactly.
+
+Two properties the user must know:
+
+- :math:`u_1(\zeta) \to \infty` as :math:`\zeta \to 1` (:math:`A' \to 0` exponentially, :math:`\bar u'` only
+  algebraically): the first fraction ``weight_cut`` (default 1e-4) of the non-contact area is given the gap of
+  the first resolved bin instead.  ``truncated_weight`` is that mass and ``truncation_shift`` the amount by which the
+  untruncated mean would be larger; without the cut the standard deviation is dominated by tiny weights at absurd
+  gaps (hundreds of rms heights).
+- The mirror term :math:`G(u + u_1)` makes the mean of P exceed :math:`\bar u(\bar p)` (the folded normal's mean is
+  larger than its centre): a fraction of a percent at light loads, tens of percent near
+  :math:`\bar p/(E^*\bar g) \approx 0.1` and more beyond, where :math:`\bar u(\bar p)` is the better mean gap.  Both
+  are reported (:attr:`GapDistribution.mean`, :attr:`GapDistribution.mean_separation`).
+
+This module imports no solver.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import erf, erfinv, ndtr
+
+from persson_fp._validate import as_float_array, as_positive_scalar
+from persson_fp.surfaces.psd import PSD
+from persson_fp.theory import fudge as _fudge
+from persson_fp.theory.effective import effective_variance
+from persson_fp.theory.separation import WEIGHTINGS, _weight
+
+__all__ = ["MagnificationResolved", "GapDistribution"]
+
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
+_N_PANELS = 6
+_DECADES = 10.0
+_Y_CUT = 10.0
+_CHUNK = 128
+_SQ2PI = np.sqrt(2.0 * np.pi)
+
+
+class MagnificationResolved:
+    r"""Contact area :math:`A(\zeta)`, separation :math:`\bar u(\zeta)` and gap :math:`u_1(\zeta)` at any stations.
+
+    Formulas in :mod:`persson_fp.theory.gaps`.  The integral over :math:`\ln\sigma` uses 6 Gauss-Legendre panels of
+    8 nodes on :math:`[\max(\ln(\bar p/(10 A\sigma)), \ln\Sigma - 10\ln 10), \ln\Sigma]`: the part cut below is
+    smaller than :math:`10^{-10}` of :math:`\bar u` or has :math:`g < e^{-45}`; tests check :math:`\bar u(1)` against
+    :class:`~persson_fp.MeanSeparation` to 1e-6 relative.
+
+    Parameters
+    ----------
+    psd : PSD
+        The spectrum (Persson's convention).
+    E_star : float, pressure
+        Plane-strain modulus (> 0).
+    fudge : None, str, FudgeFactor or callable
+        The model S(A*) (None: Persson's original theory).
+    weighting : {"yang-persson", "corrected-area"}
+        Energy weighting of a fudge model (:mod:`persson_fp.theory.separation`).
+
+    Raises
+    ------
+    ValueError
+        ``psd`` not a PSD, ``E_star`` not > 0, an unknown fudge model or weighting.
+    """
+
+    def __init__(self, psd: PSD, E_star: float = 1.0, fudge=None, weighting: str = "yang-persson"):
+        if not isinstance(psd, PSD):
+            raise ValueError(f"psd must be a persson_fp PSD (SelfAffinePSD, TabulatedPSD), got {type(psd).__name__}")
+        if weighting not in WEIGHTINGS:
+            raise ValueError(f"weighting must be one of {list(WEIGHTINGS)}, got {weighting!r}")
+        self.psd = psd
+        self.E_star = as_positive_scalar(E_star, "E_star")
+        self.fudge = _fudge.resolve(fudge)
+        self.weighting = weighting
+        self._w = _weight(self.fudge, weighting)
+        self._ev = effective_variance(self.fudge)
+        self.V_max = float(psd.V(E_star=self.E_star))
+        self.h2_max = float(psd.h2())
+        self._y_cut = _Y_CUT * np.sqrt(max(float(self.fudge.S(np.array(1.0))), 1.0))
+        a = np.linspace(0.0, 1.0, _N_PANELS + 1)
+        self._x = ((0.5 * np.diff(a))[:, None] * (_GL_X + 1.0) + a[:-1, None]).ravel()  # nodes on [0, 1]
+        self._wx = ((0.5 * np.diff(a))[:, None] * _GL_W).ravel()
+
+    # -- areas and stations ----------------------------------------------------------------------------------
+    def area(self, p_bar, zeta) -> np.ndarray:
+        r"""The model's contact area :math:`A(\zeta) = \mathrm{erf}(\bar p/\sqrt{2\tau(\zeta)})` (``eq:new_B2``).
+
+        Parameters
+        ----------
+        p_bar : array_like, pressure
+            Loads (> 0), broadcast against ``zeta``.
+        zeta : array_like, dimensionless
+            Magnifications in [1, zeta_max].
+
+        Returns
+        -------
+        ndarray, dimensionless
+            A in [0, 1].
+        """
+        p = np.asarray(p_bar, dtype=float)
+        V = self.psd.V(self.psd.check_zeta(zeta), self.E_star)
+        tau = self._ev.tau(p, V)
+        with np.errstate(divide="ignore"):
+            return np.where(tau > 0, erf(p / np.sqrt(2.0 * np.where(tau > 0, tau, 1.0))), 1.0)
+
+    def zeta_of_area(self, p_bar, A) -> np.ndarray:
+        r"""The magnification at which the area has fallen to ``A`` (the inverse of :meth:`area` in ζ).
+
+        Parameters
+        ----------
+        p_bar : array_like, pressure
+            Loads (> 0), broadcast against ``A``.
+        A : array_like, dimensionless
+            Areas in (0, 1); where :math:`A(\zeta_{max})` is above ``A`` the result is zeta_max.
+
+        Returns
+        -------
+        ndarray, dimensionless
+            ζ in [1, zeta_max].
+        """
+        p = np.asarray(p_bar, dtype=float)
+        A = np.clip(np.asarray(A, dtype=float), 1e-300, 1.0 - 1e-16)
+        tau = p * p / (2.0 * erfinv(A) ** 2)
+        V = self._ev.V_of_tau(p, tau)
+        return self.psd.zeta_of_V(np.minimum(V, self.V_max), self.E_star)
+
+    def h(self, zeta) -> np.ndarray:
+        r"""Rms height of the roughness finer than ζ, :math:`h_\zeta = (2\pi\int_{\zeta q_l}^{q_s} qC\,dq)^{1/2}`."""
+        z = np.asarray(zeta, dtype=float)
+        h2 = self.h2_max - np.asarray(self.psd.h2(np.clip(z, 1.0, self.psd.zeta_max).ravel())).reshape(z.shape)
+        return np.sqrt(np.maximum(h2, 0.0))
+
+    # -- the separation --------------------------------------------------------------------------------------
+    def separation(self, p_bar, zeta, A=None) -> np.ndarray:
+        r"""Mean separation :math:`\bar u(\zeta)` in the apparent contact regions at magnification ζ.
+
+        Parameters
+        ----------
+        p_bar : array_like, pressure
+            Loads (> 0), broadcast against ``zeta``.
+        zeta : array_like, dimensionless
+            Magnifications in [1, zeta_max].
+        A : array_like, optional, dimensionless
+            :math:`A(\zeta)` at those points (a numerical solution's areas); default :meth:`area`.
+
+        Returns
+        -------
+        ndarray, length
+            :math:`\bar u(\zeta)`, of the broadcast shape; 0 at zeta_max and wherever the local pressure exceeds
+            10 :math:`\Sigma(\zeta)\sqrt{S(1)}` (full contact of the finer roughness to :math:`e^{-45}`).
+        """
+        p, z = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(zeta, dtype=float))
+        if A is None:
+            A = self.area(p, z)
+        A = np.broadcast_to(np.asarray(A, dtype=float), p.shape)
+        shape = p.shape
+        p, z, A = p.ravel(), z.ravel(), A.ravel()
+        out = np.zeros(p.size)
+        V_z = self.psd.V(self.psd.check_zeta(z), self.E_star)
+        rest = np.maximum(self.V_max - V_z, 0.0)
+        with np.errstate(divide="ignore"):
+            p_loc = p / np.maximum(A, 1e-300)
+            s_hi = 0.5 * np.log(rest)
+            s_lo = np.maximum(np.log(p_loc / self._y_cut), s_hi - _DECADES * np.log(10.0))
+        live = np.flatnonzero(np.isfinite(s_hi) & (s_lo < s_hi) & (A > 0))
+        for i in range(0, live.size, _CHUNK * 8):
+            k = live[i : i + _CHUNK * 8]
+            ds = (s_hi[k] - s_lo[k])[:, None]
+            s = s_lo[k][:, None] + ds * self._x[None, :]
+            sigma = np.exp(s)
+            q = self.psd.zeta_of_V(sigma * sigma + V_z[k][:, None], self.E_star) * self.psd.q_l
+            f = self._w.g(p_loc[k][:, None] / sigma) * sigma / q
+            out[k] = (2.0 / self.E_star) * np.sum(f * ds * self._wx[None, :], axis=1)
+        return out.reshape(shape)
+
+    def u1(self, p_bar, zeta, dA: float = 1e-3) -> np.ndarray:
+        r"""Mean gap :math:`u_1 = d(A\bar u)/dA` of the area that loses contact at magnification ζ.
+
+        A central difference in A of half-width ``dA`` (error :math:`O(dA^2)`); it diverges as ζ → 1 (module
+        docstring).  Where A is within ``dA`` of 1 or of :math:`A(\zeta_{max})` a one-sided difference is used.
+
+        Parameters
+        ----------
+        p_bar : array_like, pressure
+            Loads (> 0), broadcast against ``zeta``.
+        zeta : array_like, dimensionless
+            Magnifications in [1, zeta_max].
+        dA : float
+            Half-width of the difference in area, in (0, 0.05].
+
+        Returns
+        -------
+        ndarray, length
+            :math:`u_1`.
+        """
+        dA = as_positive_scalar(dA, "dA")
+        if dA > 0.05:
+            raise ValueError(f"dA must lie in (0, 0.05], got {dA!r}")
+        p, z = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(zeta, dtype=float))
+        A = self.area(p, z)
+        A_end = self.area(p, self.psd.zeta_max)
+        A_hi = np.minimum(A + dA, 1.0)
+        A_lo = np.maximum(A - dA, A_end)
+        z_hi = np.where(A_hi >= 1.0, 1.0, self.zeta_of_area(p, A_hi))
+        z_lo = np.where(A_lo <= A_end, self.psd.zeta_max, self.zeta_of_area(p, A_lo))
+        A_hi, A_lo = self.area(p, z_hi), self.area(p, z_lo)
+        u_hi, u_lo = self.separation(p, z_hi, A_hi), self.separation(p, z_lo, A_lo)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out = (A_hi * u_hi - A_lo * u_lo) / (A_hi - A_lo)
+        return np.where(A_hi - A_lo > 0, out, 0.0)
+
+
+class GapDistribution:
+    r"""Distribution of the interfacial gap :math:`P(u)` at each load (Almqvist et al., JMPS 59 (2011) 2355).
+
+    An atom ``contact_fraction`` :math:`= A(\zeta_{max})` at u = 0 plus a mixture of folded normals (module
+    docstring of :mod:`persson_fp.theory.gaps`).  Arrays of per-load results have shape ``(n_loads,)``.
+
+    Parameters
+    ----------
+    resolved : MagnificationResolved
+        Spectrum, modulus and model.
+    p_bar : array_like, pressure
+        Loads (> 0), 1-D.
+    n_area : int
+        Stations uniform in A (>= 8).
+    n_zeta : int
+        Extra stations log-uniform in ζ (>= 8): they resolve :math:`h_\zeta` near :math:`\zeta_{max}`.
+    weight_cut : float
+        Fraction of the non-contact area, lost first (ζ near 1), whose gap is not resolved (module docstring);
+        in [1e-12, 0.01].
+    zeta, area : array_like, optional
+        A numerical solution's stations (n_zeta,) and areas (n_zeta, n_loads) to use instead of the model's
+        closed form (``weight_cut`` then acts on the given stations only).
+
+    Attributes
+    ----------
+    weights, centres, widths : ndarray, shape (n_loads, n_bins)
+        Mass (dimensionless), centre :math:`u_1` (length) and :math:`h_\zeta` (length) of each folded normal.
+    zeta_bins : ndarray, shape (n_loads, n_bins)
+        Geometric mid-magnification of each bin.
+    contact_fraction : ndarray, dimensionless
+        The atom at u = 0.
+    mean_separation : ndarray, length
+        :math:`\bar u(\bar p)` (= :math:`\bar u(\zeta = 1)`), the theory's mean separation.
+    truncated_weight : ndarray, dimensionless
+        Mass whose gap was replaced by the first resolved bin's (ζ near 1).
+    truncation_shift : ndarray, length
+        How much larger the mean would be without that replacement.
+    """
+
+    def __init__(self, resolved, p_bar, n_area=96, n_zeta=64, weight_cut=1e-4, zeta=None, area=None):
+        self.resolved = r = resolved
+        p = as_float_array(p_bar, "p_bar").reshape(-1)
+        if p.size == 0 or np.any(p <= 0):
+            raise ValueError("p_bar must hold at least one load, all > 0 (pressure)")
+        for name, n in (("n_area", n_area), ("n_zeta", n_zeta)):
+            if not isinstance(n, (int, np.integer)) or n < 8:
+                raise ValueError(f"{name} must be an integer >= 8, got {n!r}")
+        weight_cut = as_positive_scalar(weight_cut, "weight_cut")
+        if not 1e-12 <= weight_cut <= 0.01:
+            raise ValueError(f"weight_cut must lie in [1e-12, 0.01], got {weight_cut!r}")
+        self.p_bar = p
+        zmax = r.psd.zeta_max
+        if area is None:
+            A_end = r.area(p, zmax)
+            A_top = 1.0 - weight_cut * (1.0 - A_end)
+            frac = np.linspace(0.0, 1.0, n_area)[None, :]
+            A_st = A_top[:, None] - (A_top - A_end)[:, None] * frac
+            z_A = r.zeta_of_area(p[:, None], A_st[:, :-1])
+            z_log = np.broadcast_to(np.geomspace(1.0, zmax, n_zeta)[1:-1], (p.size, n_zeta - 2))
+            z = np.sort(np.concatenate((np.ones((p.size, 1)), z_A, z_log, np.full((p.size, 1), zmax)), axis=1))
+            A = r.area(p[:, None], z)
+            A[:, 0] = 1.0
+            cut_at = np.argmax(z_A[:, :1] <= z, axis=1)  # station of A_top: the end of the lump
+        else:
+            z = np.broadcast_to(r.psd.check_zeta(as_float_array(zeta, "zeta")), (p.size, np.size(zeta)))
+            A = np.asarray(as_float_array(area, "area"), dtype=float).T
+            if A.shape != z.shape:
+                raise ValueError(f"area must have shape (n_zeta, n_loads) = {z.shape[::-1]}, got {A.shape[::-1]}")
+            if np.any(np.diff(z, axis=1) <= 0) or z[0, 0] != 1.0 or z[0, -1] != zmax:
+                raise ValueError("zeta must increase strictly from 1 to zeta_max")
+            A = np.minimum.accumulate(np.clip(A, 0.0, 1.0), axis=1)  # contact is only lost (eq:Area)
+            A[:, 0] = 1.0
+            A_end = A[:, -1]
+            lost = 1.0 - A
+            cut_at = np.argmax(lost > weight_cut * (1.0 - A_end)[:, None], axis=1)
+        u = r.separation(p[:, None], z, A)
+        u[:, -1] = 0.0
+        Au = A * u
+        w = np.maximum(A[:, :-1] - A[:, 1:], 0.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            c = np.where(w > 0, (Au[:, :-1] - Au[:, 1:]) / np.where(w > 0, w, 1.0), 0.0)
+        zm = np.sqrt(z[:, :-1] * z[:, 1:])
+        hb = r.h(zm)
+        # the lump [1, zeta(A_top)]: one component at the gap of the first resolved bin (module docstring)
+        n_b = w.shape[1]
+        rows = np.arange(p.size)
+        cut_at = np.clip(cut_at, 1, n_b - 1)
+        in_lump = np.arange(n_b)[None, :] < cut_at[:, None]
+        W0 = np.sum(np.where(in_lump, w, 0.0), axis=1)
+        raw = Au[:, 0] - Au[rows, cut_at]  # = its share of the mean separation (telescoped; w = 0 bins included)
+        c_first = c[rows, cut_at]
+        self.truncated_weight = W0
+        self.truncation_shift = raw - W0 * c_first
+        c = np.where(in_lump, c_first[:, None], c)
+        hb = np.where(in_lump, hb[rows, cut_at][:, None], hb)
+        keep = w > 0
+        self.weights = np.where(keep, w, 0.0)
+        self.centres = np.where(keep, np.maximum(c, 0.0), 0.0)
+        self.widths = np.where(keep, np.maximum(hb, 1e-300), 1.0)
+        self.zeta_bins = zm
+        self.contact_fraction = A_end.copy()
+        self.mean_separation = u[:, 0].copy()
+
+    @property
+    def n_loads(self) -> int:
+        """Number of loads."""
+        return self.p_bar.size
+
+    @property
+    def normalisation(self) -> np.ndarray:
+        """Total mass, atom included (1 to round-off: it telescopes)."""
+        return self.contact_fraction + np.sum(self.weights, axis=1)
+
+    def _u(self, u):
+        u = as_float_array(u, "u")
+        if not np.all(np.isfinite(u)):
+            raise ValueError("u must be finite (gap, length)")
+        return u
+
+    def pdf(self, u) -> np.ndarray:
+        r"""Density of the continuous part of P(u) (the atom at u = 0 is :attr:`contact_fraction`, not included).
+
+        Parameters
+        ----------
+        u : array_like, length
+            Gaps; the density is 0 for u < 0.
+
+        Returns
+        -------
+        ndarray, 1/length
+            Shape ``(n_loads,) + u.shape``.
+        """
+        u = self._u(u)
+        uu = np.abs(u).reshape(-1)[None, :, None]
+        c, h, w = (a[:, None, :] for a in (self.centres, self.widths, self.weights))
+        g = (np.exp(-0.5 * ((uu - c) / h) ** 2) + np.exp(-0.5 * ((uu + c) / h) ** 2)) / (_SQ2PI * h)
+        out = np.sum(w * g, axis=2)
+        return np.where(u.reshape(-1)[None, :] >= 0, out, 0.0).reshape((self.n_loads,) + u.shape)
+
+    def cdf(self, u) -> np.ndarray:
+        r"""Cumulative distribution :math:`\Pr(\text{gap} \le u)`, the atom at u = 0 included.
+
+        Parameters
+        ----------
+        u : array_like, length
+            Gaps.
+
+        Returns
+        -------
+        ndarray, dimensionless
+            Shape ``(n_loads,) + u.shape``; 0 for u < 0, the contact fraction at u = 0, → 1 as u → ∞.
+        """
+        u = self._u(u)
+        uu = np.maximum(u.reshape(-1), 0.0)[None, :, None]
+        c, h, w = (a[:, None, :] for a in (self.centres, self.widths, self.weights))
+        out = self.contact_fraction[:, None] + np.sum(w * (ndtr((uu - c) / h) - ndtr((-uu - c) / h)), axis=2)
+        return np.where(u.reshape(-1)[None, :] >= 0, out, 0.0).reshape((self.n_loads,) + u.shape)
+
+    @property
+    def mean(self) -> np.ndarray:
+        r"""Mean gap over the whole nominal area (contact included), length.
+
+        The folded normals' means :math:`h\sqrt{2/\pi}e^{-c^2/2h^2} + c(1 - 2\Phi(-c/h))`; compare
+        :attr:`mean_separation`.
+        """
+        c, h = self.centres, self.widths
+        m = h * np.sqrt(2.0 / np.pi) * np.exp(-0.5 * (c / h) ** 2) + c * (1.0 - 2.0 * ndtr(-c / h))
+        return np.sum(self.weights * m, axis=1)
+
+    @property
+    def second_moment(self) -> np.ndarray:
+        r""":math:`\langle u^2\rangle = \sum w(c^2 + h^2)` (length²)."""
+        return np.sum(self.weights * (self.centres**2 + self.widths**2), axis=1)
+
+    @property
+    def std(self) -> np.ndarray:
+        """Standard deviation of the gap over the whole nominal area (length)."""
+        return np.sqrt(np.maximum(self.second_moment - self.mean**2, 0.0))
+
+    def u1(self, zeta) -> np.ndarray:
+        r"""The bins' :math:`u_1` interpolated (linearly in ln ζ) at ``zeta``; shape ``(n_loads,) + zeta.shape``.
+
+        Parameters
+        ----------
+        zeta : array_like, dimensionless
+            Magnifications in [1, zeta_max].
+
+        Returns
+        -------
+        ndarray, length
+        """
+        z = self.resolved.psd.check_zeta(as_float_array(zeta, "zeta"))
+        out = [np.interp(np.log(z), np.log(zb[wb > 0]), cb[wb > 0]) if np.any(wb > 0) else np.zeros(z.shape)
+               for zb, cb, wb in zip(self.zeta_bins, self.centres, self.weights)]
+        return np.array(out).reshape((self.n_loads,) + z.shape)
+
+    def sample(self, n: int, rng=None) -> np.ndarray:
+        """Draw gaps from P(u) (exact: a component by its weight, then the absolute value of its normal).
+
+        Parameters
+        ----------
+        n : int
+            Samples per load (>= 1).
+        rng : numpy.random.Generator or int, optional
+            Random source or seed.
+
+        Returns
+        -------
+        ndarray, length
+            Shape ``(n_loads, n)``; exactly 0 with probability :attr:`contact_fraction`.
+        """
+        if not isinstance(n, (int, np.integer)) or n < 1:
+            raise ValueError(f"n must be an integer >= 1, got {n!r}")
+        rng = np.random.default_rng(rng)
+        out = np.zeros((self.n_loads, n))
+        for j in range(self.n_loads):
+            probs = np.concatenate(([self.contact_fraction[j]], self.weights[j]))
+            k = rng.choice(probs.size, size=n, p=probs / probs.sum())
+            cont = k > 0
+            kk = k[cont] - 1
+            out[j, cont] = np.abs(self.centres[j, kk] + self.widths[j, kk] * rng.standard_normal(kk.size))
+        return out
