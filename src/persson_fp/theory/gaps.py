@@ -283,6 +283,7 @@ class GapDistribution:
 
     def __init__(self, resolved, p_bar, n_area=96, n_zeta=64, weight_cut=1e-4, zeta=None, area=None):
         self.resolved = r = resolved
+        self.scalar = np.ndim(p_bar) == 0
         p = as_float_array(p_bar, "p_bar").reshape(-1)
         if p.size == 0 or np.any(p <= 0):
             raise ValueError("p_bar must hold at least one load, all > 0 (pressure)")
@@ -342,18 +343,32 @@ class GapDistribution:
         self.centres = np.where(keep, np.maximum(c, 0.0), 0.0)
         self.widths = np.where(keep, np.maximum(hb, 1e-300), 1.0)
         self.zeta_bins = zm
-        self.contact_fraction = A_end.copy()
-        self.mean_separation = u[:, 0].copy()
+        self.atom = A_end.copy()
+        self.separation = u[:, 0].copy()
 
     @property
     def n_loads(self) -> int:
         """Number of loads."""
         return self.p_bar.size
 
+    def _out(self, x):
+        """Per-load results: the single entry for a scalar load."""
+        return x[0] if self.scalar else x
+
     @property
-    def normalisation(self) -> np.ndarray:
+    def contact_fraction(self):
+        """The atom at u = 0, :math:`A(\\zeta_{max})` (dimensionless, per load)."""
+        return self._out(self.atom)
+
+    @property
+    def mean_separation(self):
+        r""":math:`\bar u(\bar p) = \bar u(\zeta = 1)`, the theory's mean separation (length, per load)."""
+        return self._out(self.separation)
+
+    @property
+    def normalisation(self):
         """Total mass, atom included (1 to round-off: it telescopes)."""
-        return self.contact_fraction + np.sum(self.weights, axis=1)
+        return self._out(self.atom + np.sum(self.weights, axis=1))
 
     def _u(self, u):
         u = as_float_array(u, "u")
@@ -379,7 +394,7 @@ class GapDistribution:
         c, h, w = (a[:, None, :] for a in (self.centres, self.widths, self.weights))
         g = (np.exp(-0.5 * ((uu - c) / h) ** 2) + np.exp(-0.5 * ((uu + c) / h) ** 2)) / (_SQ2PI * h)
         out = np.sum(w * g, axis=2)
-        return np.where(u.reshape(-1)[None, :] >= 0, out, 0.0).reshape((self.n_loads,) + u.shape)
+        return self._out(np.where(u.reshape(-1)[None, :] >= 0, out, 0.0).reshape((self.n_loads,) + u.shape))
 
     def cdf(self, u) -> np.ndarray:
         r"""Cumulative distribution :math:`\Pr(\text{gap} \le u)`, the atom at u = 0 included.
@@ -397,8 +412,13 @@ class GapDistribution:
         u = self._u(u)
         uu = np.maximum(u.reshape(-1), 0.0)[None, :, None]
         c, h, w = (a[:, None, :] for a in (self.centres, self.widths, self.weights))
-        out = self.contact_fraction[:, None] + np.sum(w * (ndtr((uu - c) / h) - ndtr((-uu - c) / h)), axis=2)
-        return np.where(u.reshape(-1)[None, :] >= 0, out, 0.0).reshape((self.n_loads,) + u.shape)
+        out = self.atom[:, None] + np.sum(w * (ndtr((uu - c) / h) - ndtr((-uu - c) / h)), axis=2)
+        return self._out(np.where(u.reshape(-1)[None, :] >= 0, out, 0.0).reshape((self.n_loads,) + u.shape))
+
+    def _mean(self):
+        c, h = self.centres, self.widths
+        m = h * np.sqrt(2.0 / np.pi) * np.exp(-0.5 * (c / h) ** 2) + c * (1.0 - 2.0 * ndtr(-c / h))
+        return np.sum(self.weights * m, axis=1)
 
     @property
     def mean(self) -> np.ndarray:
@@ -407,19 +427,18 @@ class GapDistribution:
         The folded normals' means :math:`h\sqrt{2/\pi}e^{-c^2/2h^2} + c(1 - 2\Phi(-c/h))`; compare
         :attr:`mean_separation`.
         """
-        c, h = self.centres, self.widths
-        m = h * np.sqrt(2.0 / np.pi) * np.exp(-0.5 * (c / h) ** 2) + c * (1.0 - 2.0 * ndtr(-c / h))
-        return np.sum(self.weights * m, axis=1)
+        return self._out(self._mean())
 
     @property
     def second_moment(self) -> np.ndarray:
         r""":math:`\langle u^2\rangle = \sum w(c^2 + h^2)` (length²)."""
-        return np.sum(self.weights * (self.centres**2 + self.widths**2), axis=1)
+        return self._out(np.sum(self.weights * (self.centres**2 + self.widths**2), axis=1))
 
     @property
     def std(self) -> np.ndarray:
         """Standard deviation of the gap over the whole nominal area (length)."""
-        return np.sqrt(np.maximum(self.second_moment - self.mean**2, 0.0))
+        m2 = np.sum(self.weights * (self.centres**2 + self.widths**2), axis=1)
+        return self._out(np.sqrt(np.maximum(m2 - self._mean() ** 2, 0.0)))
 
     def u1(self, zeta) -> np.ndarray:
         r"""The bins' :math:`u_1` interpolated (linearly in ln ζ) at ``zeta``; shape ``(n_loads,) + zeta.shape``.
@@ -436,7 +455,7 @@ class GapDistribution:
         z = self.resolved.psd.check_zeta(as_float_array(zeta, "zeta"))
         out = [np.interp(np.log(z), np.log(zb[wb > 0]), cb[wb > 0]) if np.any(wb > 0) else np.zeros(z.shape)
                for zb, cb, wb in zip(self.zeta_bins, self.centres, self.weights)]
-        return np.array(out).reshape((self.n_loads,) + z.shape)
+        return self._out(np.array(out).reshape((self.n_loads,) + z.shape))
 
     def sample(self, n: int, rng=None) -> np.ndarray:
         """Draw gaps from P(u) (exact: a component by its weight, then the absolute value of its normal).
@@ -458,9 +477,9 @@ class GapDistribution:
         rng = np.random.default_rng(rng)
         out = np.zeros((self.n_loads, n))
         for j in range(self.n_loads):
-            probs = np.concatenate(([self.contact_fraction[j]], self.weights[j]))
+            probs = np.concatenate(([self.atom[j]], self.weights[j]))
             k = rng.choice(probs.size, size=n, p=probs / probs.sum())
             cont = k > 0
             kk = k[cont] - 1
             out[j, cont] = np.abs(self.centres[j, kk] + self.widths[j, kk] * rng.standard_normal(kk.size))
-        return out
+        return self._out(out)
