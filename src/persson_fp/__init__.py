@@ -11,7 +11,13 @@ from persson_fp.problems.contact import ContactProblem
 from persson_fp.problems.fokker_planck import FokkerPlanckProblem
 from persson_fp.results.energy import elastic_energy, pressure_spectrum
 from persson_fp.results.exact import ExactSolution, exact
-from persson_fp.results.interface import AdhesiveContact, adhesive_contact, contact_conductance, gap_distribution, leak_rate
+from persson_fp.results.interface import (
+    AdhesiveContact,
+    adhesive_contact,
+    contact_conductance,
+    gap_distribution,
+    leak_rate,
+)
 from persson_fp.results.solution import Comparison, InstabilityError, Solution, SolverError
 from persson_fp.solvers import METHODS, available_methods, solve
 from persson_fp.surfaces.conventions import CONVENTIONS, abel_factor, abel_forward, abel_inverse

@@ -21,8 +21,14 @@ from persson_fp.theory import leakage as _leak
 from persson_fp.theory.gaps import GapDistribution, MagnificationResolved
 from persson_fp.theory.separation import MeanSeparation
 
-__all__ = ["gap_distribution", "leak_rate", "contact_conductance", "adhesive_contact", "AdhesiveContact",
-           "LEAK_METHODS"]
+__all__ = [
+    "gap_distribution",
+    "leak_rate",
+    "contact_conductance",
+    "adhesive_contact",
+    "AdhesiveContact",
+    "LEAK_METHODS",
+]
 
 LEAK_METHODS = ("critical-junction", "effective-medium")
 """Leak-rate estimates (:mod:`persson_fp.theory.leakage`)."""
@@ -44,8 +50,14 @@ def _out(problem, x):
     return float(x[0]) if problem.scalar_load else x
 
 
-def gap_distribution(problem, solution=None, weighting: str = "yang-persson", n_area: int = 96, n_zeta: int = 64,
-                     weight_cut: float = 1e-4) -> GapDistribution:
+def gap_distribution(
+    problem,
+    solution=None,
+    weighting: str = "yang-persson",
+    n_area: int = 96,
+    n_zeta: int = 64,
+    weight_cut: float = 1e-4,
+) -> GapDistribution:
     r"""The distribution P(u) of the interfacial gap at each load (Almqvist et al., JMPS 59 (2011) 2355).
 
     Parameters
@@ -87,17 +99,27 @@ def gap_distribution(problem, solution=None, weighting: str = "yang-persson", n_
     if solution is None:
         gd = GapDistribution(r, problem.p_bar, n_area=n_area, n_zeta=n_zeta, weight_cut=weight_cut)
     else:
-        if getattr(solution, "problem", None) is not problem and not np.array_equal(solution.problem.p_bar,
-                                                                                    problem.p_bar):
+        if getattr(solution, "problem", None) is not problem and not np.array_equal(
+            solution.problem.p_bar, problem.p_bar
+        ):
             raise ValueError("solution must be a numerical Solution of this problem (same loads)")
-        gd = GapDistribution(r, problem.p_bar, weight_cut=weight_cut, zeta=solution.zeta,
-                             area=solution.contact_area_all)
+        gd = GapDistribution(
+            r, problem.p_bar, weight_cut=weight_cut, zeta=solution.zeta, area=solution.contact_area_all
+        )
     gd.scalar = problem.scalar_load
     return gd
 
 
-def leak_rate(problem, viscosity, pressure_drop, aspect: float = 1.0, method: str = "critical-junction",
-              A_c: float = _leak.A_C_DEFAULT, weighting: str = "yang-persson", full_output: bool = False):
+def leak_rate(
+    problem,
+    viscosity,
+    pressure_drop,
+    aspect: float = 1.0,
+    method: str = "critical-junction",
+    A_c: float = _leak.A_C_DEFAULT,
+    weighting: str = "yang-persson",
+    full_output: bool = False,
+):
     r"""Volume flow rate of fluid through a seal with nominal contact pressure p̄ (Lorenz & Persson 2009, 2010).
 
     Parameters
@@ -154,7 +176,7 @@ def leak_rate(problem, viscosity, pressure_drop, aspect: float = 1.0, method: st
 
 
 def contact_conductance(problem, resistivity=None, thermal_conductivity=None, weighting: str = "yang-persson"):
-    r"""Electrical or thermal contact conductance per nominal area from Barber's relation (Proc. R. Soc. A 459 (2003) 53).
+    r"""Electrical or thermal contact conductance per nominal area (Barber, Proc. R. Soc. A 459 (2003) 53).
 
     :math:`C = 2K/(E^*(\rho_1+\rho_2))` or :math:`h = 2K/(E^*(1/k_1+1/k_2))` with Persson's stiffness
     :math:`K = -d\bar p/d\bar u` (:func:`~persson_fp.contact_stiffness`).
@@ -202,6 +224,8 @@ class AdhesiveContact:
         The stickiness criteria.
     interaction : Interaction
         The traction law.
+    info : dict
+        ``pull_off_at_edge`` (the minimum at the edge of the searched loads) and ``weighting``.
     """
 
     p_repulsive: np.ndarray
@@ -262,8 +286,12 @@ def adhesive_contact(problem, interaction, weighting: str = "yang-persson", rho=
     k = int(np.argmin(f))
     at_edge = k in (0, grid.size - 1)
     lo, hi = np.log(grid[max(k - 1, 0)]), np.log(grid[min(k + 1, grid.size - 1)])
-    res = minimize_scalar(lambda t: float(np.exp(t) - _p_att(r, np.array([np.exp(t)]), inter)[0]),
-                          bounds=(lo, hi), method="bounded", options={"xatol": 1e-6})
+    res = minimize_scalar(
+        lambda t: float(np.exp(t) - _p_att(r, np.array([np.exp(t)]), inter)[0]),
+        bounds=(lo, hi),
+        method="bounded",
+        options={"xatol": 1e-6},
+    )
     p_min, f_min = (float(np.exp(res.x)), float(res.fun)) if res.fun <= f[k] else (float(grid[k]), float(f[k]))
     return AdhesiveContact(
         p_repulsive=_out(problem, p),

@@ -221,7 +221,9 @@ def resolve_interaction(interaction, rho=None) -> Interaction:
         if rho is None:
             raise ValueError("a callable interaction needs its range rho (length) for the quadrature")
         return CallableInteraction(interaction, rho)
-    raise ValueError(f"interaction must be Exponential, MaugisDugdale, LennardJones93 or a callable; got {interaction!r}")
+    raise ValueError(
+        f"interaction must be Exponential, MaugisDugdale, LennardJones93 or a callable; got {interaction!r}"
+    )
 
 
 def attractive_stress(gaps, interaction: Interaction) -> np.ndarray:

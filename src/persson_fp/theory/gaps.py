@@ -157,7 +157,18 @@ class MagnificationResolved:
         return self.psd.zeta_of_V(np.minimum(V, self.V_max), self.E_star)
 
     def h(self, zeta) -> np.ndarray:
-        r"""Rms height of the roughness finer than ζ, :math:`h_\zeta = (2\pi\int_{\zeta q_l}^{q_s} qC\,dq)^{1/2}`."""
+        r"""Rms height of the roughness finer than ζ, :math:`h_\zeta = (2\pi\int_{\zeta q_l}^{q_s} qC\,dq)^{1/2}`.
+
+        Parameters
+        ----------
+        zeta : array_like, dimensionless
+            Magnifications (clipped to [1, zeta_max]).
+
+        Returns
+        -------
+        ndarray, length
+            :math:`h_\zeta`, 0 at zeta_max.
+        """
         z = np.asarray(zeta, dtype=float)
         h2 = self.h2_max - np.asarray(self.psd.h2(np.clip(z, 1.0, self.psd.zeta_max).ravel())).reshape(z.shape)
         return np.sqrt(np.maximum(h2, 0.0))
@@ -265,20 +276,14 @@ class GapDistribution:
         A numerical solution's stations (n_zeta,) and areas (n_zeta, n_loads) to use instead of the model's
         closed form (``weight_cut`` then acts on the given stations only).
 
-    Attributes
-    ----------
-    weights, centres, widths : ndarray, shape (n_loads, n_bins)
-        Mass (dimensionless), centre :math:`u_1` (length) and :math:`h_\zeta` (length) of each folded normal.
-    zeta_bins : ndarray, shape (n_loads, n_bins)
-        Geometric mid-magnification of each bin.
-    contact_fraction : ndarray, dimensionless
-        The atom at u = 0.
-    mean_separation : ndarray, length
-        :math:`\bar u(\bar p)` (= :math:`\bar u(\zeta = 1)`), the theory's mean separation.
-    truncated_weight : ndarray, dimensionless
-        Mass whose gap was replaced by the first resolved bin's (ζ near 1).
-    truncation_shift : ndarray, length
-        How much larger the mean would be without that replacement.
+    Notes
+    -----
+    After construction (arrays of shape ``(n_loads, n_bins)``): ``weights`` (mass, dimensionless), ``centres``
+    (:math:`u_1`, length) and ``widths`` (:math:`h_\zeta`, length) of the folded normals, ``zeta_bins`` (geometric
+    mid-magnification of each bin).  Per load (floats for a scalar load): ``contact_fraction`` (the atom at u = 0),
+    ``mean_separation`` (:math:`\bar u(\bar p) = \bar u(\zeta = 1)`), ``mean``, ``std``; as arrays
+    ``truncated_weight`` (mass whose gap was replaced by the first resolved bin's, ζ near 1) and
+    ``truncation_shift`` (length: how much larger the mean would be without that replacement).
     """
 
     def __init__(self, resolved, p_bar, n_area=96, n_zeta=64, weight_cut=1e-4, zeta=None, area=None):
@@ -453,8 +458,10 @@ class GapDistribution:
         ndarray, length
         """
         z = self.resolved.psd.check_zeta(as_float_array(zeta, "zeta"))
-        out = [np.interp(np.log(z), np.log(zb[wb > 0]), cb[wb > 0]) if np.any(wb > 0) else np.zeros(z.shape)
-               for zb, cb, wb in zip(self.zeta_bins, self.centres, self.weights)]
+        out = [
+            np.interp(np.log(z), np.log(zb[wb > 0]), cb[wb > 0]) if np.any(wb > 0) else np.zeros(z.shape)
+            for zb, cb, wb in zip(self.zeta_bins, self.centres, self.weights)
+        ]
         return self._out(np.array(out).reshape((self.n_loads,) + z.shape))
 
     def sample(self, n: int, rng=None) -> np.ndarray:
