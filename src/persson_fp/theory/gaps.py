@@ -44,7 +44,7 @@ Two properties the user must know:
 - The mirror term :math:`G(u + u_1)` makes the mean of P exceed :math:`\bar u(\bar p)` (the folded normal's mean is
   larger than its centre): a fraction of a percent at light loads, tens of percent near
   :math:`\bar p/(E^*\bar g) \approx 0.1` and more beyond, where :math:`\bar u(\bar p)` is the better mean gap.  Both
-  are reported (:attr:`GapDistribution.mean`, :attr:`GapDistribution.mean_separation`).
+  are reported (:attr:`persson_fp.GapDistribution.mean`, :attr:`persson_fp.GapDistribution.mean_separation`).
 
 This module imports no solver.
 """
