@@ -54,8 +54,8 @@ def gap_distribution(
     problem,
     solution=None,
     weighting: str = "yang-persson",
-    n_area: int = 96,
-    n_zeta: int = 64,
+    n_area: int = 64,
+    n_zeta: int = 48,
     weight_cut: float = 1e-4,
 ) -> GapDistribution:
     r"""The distribution P(u) of the interfacial gap at each load (Almqvist et al., JMPS 59 (2011) 2355).

@@ -109,6 +109,12 @@ class MagnificationResolved:
         self.V_max = float(psd.V(E_star=self.E_star))
         self.h2_max = float(psd.h2())
         self._y_cut = _Y_CUT * np.sqrt(max(float(self.fudge.S(np.array(1.0))), 1.0))
+        # ln g on a fine uniform table in ln y, interpolated linearly (error ~1e-6 relative in g where it matters;
+        # about 4x faster than the separation module's Hermite spline, which is the reference of the tests)
+        self._t = np.linspace(np.log(1e-9), np.log(self._y_cut), 1 << 14)
+        self._lng = np.log(np.maximum(self._w.g(np.exp(self._t)), 1e-300))
+        self._dlng = np.append(np.diff(self._lng), 0.0)
+        self._dt_inv = 1.0 / (self._t[1] - self._t[0])
         a = np.linspace(0.0, 1.0, _N_PANELS + 1)
         self._x = ((0.5 * np.diff(a))[:, None] * (_GL_X + 1.0) + a[:-1, None]).ravel()  # nodes on [0, 1]
         self._wx = ((0.5 * np.diff(a))[:, None] * _GL_W).ravel()
@@ -212,7 +218,15 @@ class MagnificationResolved:
             s = s_lo[k][:, None] + ds * self._x[None, :]
             sigma = np.exp(s)
             q = self.psd.zeta_of_V(sigma * sigma + V_z[k][:, None], self.E_star) * self.psd.q_l
-            f = self._w.g(p_loc[k][:, None] / sigma) * sigma / q
+            t = np.log(p_loc[k])[:, None] - s
+            x = np.clip((t - self._t[0]) * self._dt_inv, 0.0, self._t.size - 1.000001)
+            i = x.astype(np.intp)
+            x -= i
+            g = np.exp(self._lng[i] + x * self._dlng[i])
+            low = t < self._t[0]  # y < 1e-9: g is logarithmic there (the separation module's small-y law)
+            if np.any(low):
+                g[low] = self._w.g(np.exp(t[low]))
+            f = g * sigma / q
             out[k] = (2.0 / self.E_star) * np.sum(f * ds * self._wx[None, :], axis=1)
         return out.reshape(shape)
 
@@ -286,7 +300,7 @@ class GapDistribution:
     ``truncation_shift`` (length: how much larger the mean would be without that replacement).
     """
 
-    def __init__(self, resolved, p_bar, n_area=96, n_zeta=64, weight_cut=1e-4, zeta=None, area=None):
+    def __init__(self, resolved, p_bar, n_area=64, n_zeta=48, weight_cut=1e-4, zeta=None, area=None):
         self.resolved = r = resolved
         self.scalar = np.ndim(p_bar) == 0
         p = as_float_array(p_bar, "p_bar").reshape(-1)
