@@ -30,6 +30,7 @@ This module imports no solver.
 from __future__ import annotations
 
 import numpy as np
+from scipy.special import ndtr
 
 from persson_fp._validate import as_float_array, as_positive_scalar
 
@@ -37,9 +38,6 @@ __all__ = ["A_C_DEFAULT", "critical_junction_gap", "effective_medium_gap", "flow
 
 A_C_DEFAULT = 0.42
 """Contact area at which the non-contact channels percolate (site percolation; Lorenz & Persson 2010)."""
-
-_GH_X, _GH_W = np.polynomial.hermite_e.hermegauss(24)
-_GH_W = _GH_W / np.sqrt(2.0 * np.pi)
 
 
 def _check_A_c(A_c):
@@ -86,9 +84,16 @@ def critical_junction_gap(resolved, p_bar, A_c: float = A_C_DEFAULT, dA: float =
 def effective_medium_gap(gaps) -> np.ndarray:
     r"""Effective gap :math:`u_{eff} = (12\eta\sigma_e)^{1/3}` of 2-D Bruggeman theory on a gap distribution.
 
-    Each folded normal of :class:`~persson_fp.theory.gaps.GapDistribution` is integrated with 24-point
-    Gauss-Hermite nodes (about 1e-3 relative in :math:`\sigma_e`); the root in :math:`\ln\sigma_e` by safeguarded
-    Newton to 1e-12.
+    Integrating by parts, with :math:`f(u) = (u^3 - u_e^3)/(u^3 + u_e^3)` and the survival function
+    :math:`S(u) = 1 - \mathrm{cdf}(u)` of P (atom included), the Bruggeman condition is
+
+    .. math::  -1 + \int_{-\infty}^{\infty} \frac{6e^{3y}}{(1 + e^{3y})^2}\, S(u_e e^{y})\,dy = 0,
+
+    a logistic kernel in :math:`y = \ln(u/u_e)` against a smooth S (the integrand :math:`f` itself is a near-step
+    in u, which Gauss-Hermite rules on the folded normals do not integrate).  S is tabulated per load on 160
+    log-spaced gaps spanning 6 decades below the largest gap (S = 0 beyond) and interpolated linearly in ln u, the kernel
+    integrated by the trapezoidal rule (step 0.25 on [-12, 12]: below 1e-10), the root in :math:`\ln u_e` found by
+    bisection to 1e-13.  Measured: within 6e-4 relative of a 512-point, 8-decade table on the reference surface.
 
     Parameters
     ----------
@@ -98,41 +103,45 @@ def effective_medium_gap(gaps) -> np.ndarray:
     Returns
     -------
     ndarray, length
-        :math:`u_{eff}` per load; exactly 0 where the contact fraction is >= 1/2.
+        :math:`u_{eff}` per load; exactly 0 where the contact fraction is >= 1/2 (2-D effective-medium threshold).
     """
-    c, h, w = gaps.centres[:, :, None], gaps.widths[:, :, None], gaps.weights[:, :, None]
-    u = np.abs(c + h * _GH_X[None, None, :])
-    s = (u**3).reshape(gaps.n_loads, -1)  # 12 eta sigma(u)
-    W = (w * _GH_W[None, None, :]).reshape(gaps.n_loads, -1)
-    atom = gaps.atom
-    out = np.zeros(gaps.n_loads)
-    live = np.flatnonzero((atom < 0.5) & (np.sum(W, axis=1) > 0))
-    for j in live:
-        keep = (W[j] > 0) & (s[j] > 0)
-        sj, Wj = s[j][keep], W[j][keep]
-        lo, hi = np.log(sj.min()) - 80.0, np.log(sj.max())
+    c, h, w, atom = gaps.centres, gaps.widths, gaps.weights, gaps.atom
+    out = np.zeros(atom.size)
+    live = np.flatnonzero((atom < 0.5) & (np.sum(w, axis=1) > 0))
+    y = np.linspace(-12.0, 12.0, 97)
+    kern = 6.0 * np.exp(3.0 * y) / (1.0 + np.exp(3.0 * y)) ** 2 * (y[1] - y[0])
+    kern[[0, -1]] *= 0.5
+    for i in range(0, live.size, 32):
+        j = live[i : i + 32]
+        cj, hj, wj = c[j], h[j], w[j]
+        # the table ends where S = 0 to double precision (the largest gap plus ten widths, and a margin of e^0.5)
+        v_hi = np.log(np.max(np.where(wj > 0, cj + 10.0 * hj, 0.0), axis=1)) + 0.5
+        v = v_hi[:, None] + np.linspace(-6.0 * np.log(10.0), 0.0, 160)[None, :]
+        u = np.exp(v)[:, :, None]
+        cdf = atom[j][:, None] + np.sum(
+            wj[:, None, :]
+            * (ndtr((u - cj[:, None, :]) / hj[:, None, :]) - ndtr((-u - cj[:, None, :]) / hj[:, None, :])),
+            axis=2,
+        )
+        S = np.clip(1.0 - cdf, 0.0, 1.0)
+        dv = v[:, 1] - v[:, 0]
 
-        def F(t, sj=sj, Wj=Wj, a=atom[j]):
-            e = np.exp(t)
-            return np.sum(Wj * (sj - e) / (sj + e)) - a
+        def F(x, v=v, S=S, dv=dv):
+            pos = (x[:, None] + y[None, :] - v[:, :1]) / dv[:, None]
+            k = np.clip(pos, 0.0, S.shape[1] - 1.000001)
+            i0 = k.astype(np.intp)
+            fr = k - i0
+            rows = np.arange(S.shape[0])[:, None]
+            Sy = S[rows, i0] * (1.0 - fr) + S[rows, i0 + 1] * fr  # S is flat below the table (no mass there)
+            return -1.0 + Sy @ kern
 
-        t = 0.5 * (lo + hi)
-        for _ in range(200):
-            e = np.exp(t)
-            f = F(t)
-            if f > 0:
-                lo = t
-            else:
-                hi = t
-            df = -np.sum(Wj * 2.0 * sj * e / (sj + e) ** 2)
-            t_new = t - f / df if df < 0 else 0.5 * (lo + hi)
-            if not lo < t_new < hi:
-                t_new = 0.5 * (lo + hi)
-            if abs(t_new - t) < 1e-12 or hi - lo < 1e-12:
-                t = t_new
-                break
-            t = t_new
-        out[j] = np.exp(t / 3.0)
+        lo, hi = v[:, 0] - 14.0, v_hi + 14.0
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            f = F(mid)
+            lo = np.where(f > 0, mid, lo)
+            hi = np.where(f > 0, hi, mid)
+        out[j] = np.exp(0.5 * (lo + hi))
     return out
 
 
