@@ -288,3 +288,14 @@ def test_stickiness_criteria():
 def test_bad_input_raises_value_error_naming_the_parameter(call, match):
     with pytest.raises(ValueError, match=match):
         call(pf.ContactProblem(PSD, 1.0, 0.001))
+
+
+def test_sweep_quantities_are_the_front_ends():
+    problem = pf.ContactProblem(PSD, 1.0, np.array([1e-3, 1e-2]), fudge="YP08")
+    q = pf.QUANTITIES
+    np.testing.assert_array_equal(q["gap_mean"](problem, None), pf.gap_distribution(problem).mean)
+    np.testing.assert_array_equal(q["leak_rate"](problem, None), pf.leak_rate(problem, 1.0, 1.0))
+    np.testing.assert_allclose(q["conductance"](problem, None), 2 * pf.contact_stiffness(problem), rtol=1e-14)
+    w = 0.1 * float(PSD.elastic_energy_complete())
+    ad = pf.adhesive_contact(problem, pf.adhesion.Exponential(w=w, rho=PSD.rms_height))
+    np.testing.assert_array_equal(q["pull_off"](problem, None), [ad.pull_off] * 2)
