@@ -5,6 +5,7 @@ the pdf, closed-form areas of a pure power law, Bruggeman for two phases, Hertz 
 conductance, adaptive quadrature of the attraction, brute-force minimisation for the pull-off.
 """
 
+import os
 from types import SimpleNamespace
 
 import numpy as np
@@ -299,3 +300,30 @@ def test_sweep_quantities_are_the_front_ends():
     w = 0.1 * float(PSD.elastic_energy_complete())
     ad = pf.adhesive_contact(problem, pf.adhesion.Exponential(w=w, rho=PSD.rms_height))
     np.testing.assert_array_equal(q["pull_off"](problem, None), [ad.pull_off] * 2)
+
+
+def test_surface_command_writes_gaps_leak_rate_and_conductance(tmp_path, capsys):
+    from persson_fp.cli.app import main
+
+    N = 128
+    d = np.load(
+        os.path.join(os.path.dirname(__file__), "..", "data", "bem", "surfaces", "surface_H0.8_seed1_modes.npz")
+    )
+    H = np.zeros((N, N), complex)
+    H[np.ix_(d["k"] % N, d["k"] % N)] = d["hq"]
+    h = np.real(np.fft.ifft2(H) * N * N)
+    np.save(tmp_path / "h.npy", h)
+    args = ["surface", str(tmp_path / "h.npy"), "--size", "1", "--periodic", "--n-loads", "4"]
+    assert main(args + ["--viscosity", "2", "--pressure-drop", "3", "--output", str(tmp_path / "o")]) == 0
+    lines = open(tmp_path / "o" / "surface.csv").read().splitlines()
+    rows = [ln.split(",") for ln in lines if not ln.startswith("#")]
+    cols, data = rows[0], np.array(rows[1:], dtype=float)
+    psd = pf.psd_from_heightmap(h, 1.0).psd
+    problem = pf.ContactProblem(psd, 1.0, data[:, cols.index("p_bar")], fudge="WM17")
+    Q = pf.leak_rate(problem, viscosity=2.0, pressure_drop=3.0)
+    np.testing.assert_allclose(data[:, cols.index("Q_cj_WM17")], Q, rtol=1e-10)
+    np.testing.assert_allclose(data[:, cols.index("gap_mean_WM17")], pf.gap_distribution(problem).mean, rtol=1e-10)
+    K = pf.contact_stiffness(problem)
+    np.testing.assert_allclose(data[:, cols.index("C_rho_WM17")], 2 * K, rtol=1e-10)
+    assert main(args + ["--viscosity", "0", "--output", str(tmp_path / "p")]) == 2
+    assert "--viscosity must be" in capsys.readouterr().err
