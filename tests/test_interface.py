@@ -91,16 +91,18 @@ def test_gap_distribution_scalar_load_sampler_and_u1():
 
 def test_gap_distribution_from_a_numerical_solution():
     problem = pf.ContactProblem(PSD, 1.0, np.array([0.001, 0.01]), fudge="YP08")
-    zeta = np.geomspace(1.0, PSD.zeta_max, 400)
-    A = np.array([pf.exact(problem, zeta).contact_area]).reshape(zeta.size, -1)
-    fake = SimpleNamespace(problem=problem, zeta=zeta, contact_area_all=A)
-    gd_num = pf.gap_distribution(problem, fake)
+    sol = pf.solve(problem, "sines", zeta_out=np.geomspace(1.3, PSD.zeta_max, 200))  # stations after zeta = 1
+    gd_num = pf.gap_distribution(problem, sol)
     gd = pf.gap_distribution(problem)
     np.testing.assert_allclose(gd_num.normalisation, 1.0, atol=1e-14)
+    # u(zeta = 1) does not depend on the areas: the same number
     np.testing.assert_allclose(gd_num.mean_separation, gd.mean_separation, rtol=1e-12)
-    np.testing.assert_allclose(gd_num.mean, gd.mean, rtol=0.02)  # different stations and truncation
+    # coarser stations (no refinement in A) and the lump [1, 1.3]: 1.4 % in the mean, 0.01 in the cdf measured
+    np.testing.assert_allclose(gd_num.mean, gd.mean, rtol=0.03)
     u = np.linspace(0, 4 * PSD.rms_height, 50)
-    assert np.max(np.abs(gd_num.cdf(u) - gd.cdf(u))) < 0.01
+    assert np.max(np.abs(gd_num.cdf(u) - gd.cdf(u))) < 0.02
+    with pytest.raises(ValueError, match="zeta_max"):
+        GapDistribution(MagnificationResolved(PSD), [0.001], zeta=[1.0, 2.0], area=[[1.0], [0.5]])
 
 
 def test_critical_junction_on_a_pure_power_law():

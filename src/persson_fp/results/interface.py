@@ -66,7 +66,7 @@ def gap_distribution(
         Spectrum, modulus, loads and fudge model (elastic).
     solution : Solution, optional
         A numerical solution of ``problem`` whose stations and areas (``contact_area_all``) replace the model's
-        closed-form :math:`A(\zeta)`; its stations must run from 1 to zeta_max.
+        closed-form :math:`A(\zeta)`; its stations must end at zeta_max (``zeta_out`` of :func:`~persson_fp.solve`).
     weighting : {"yang-persson", "corrected-area"}
         Energy weighting of the separation (:mod:`persson_fp.theory.separation`).
     n_area, n_zeta : int

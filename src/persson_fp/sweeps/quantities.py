@@ -17,10 +17,10 @@ Tutorial Based on Stochastic Process Theory"):
 When :mod:`persson_fp.theory.separation` is installed (mean interfacial separation, Persson, PRL 99 (2007)
 125502; Yang & Persson, J. Phys.: Condens. Matter 20 (2008) 215214), ``"mean_separation"`` and
 ``"stiffness"`` are registered too.  What happens in the gaps (:mod:`persson_fp.results.interface`):
-``"gap_mean"`` (mean of P(u)), ``"leak_rate"`` (critical junction, :math:`Q\eta/\Delta p = u_c^3/12` for a square
-seal), ``"conductance"`` (Barber's :math:`C(\rho_1 + \rho_2) = 2K/E^*`) and ``"pull_off"`` (DMT, an exponential law
-with :math:`w = 0.1\,U_{el}` of full contact and :math:`\rho = h_{rms}`; register your own law with
-``functools.partial`` of :func:`persson_fp.adhesive_contact`).  Add your own with :func:`register_quantity`; a function used
+``"gap_mean"`` (mean of P(u)), ``"leak_rate"`` (critical junction, Q eta/dp = u_c^3/12 for a square seal),
+``"conductance"`` (Barber's C (rho1 + rho2) = 2K/E*) and ``"pull_off"`` (DMT, an exponential law with
+w = 0.1 U_el of full contact and rho = h_rms; register your own law with ``functools.partial`` of
+:func:`persson_fp.adhesive_contact`).  Add your own with :func:`register_quantity`; a function used
 with a process pool or a cluster must be importable by name (a module-level ``def``, not a lambda).
 """
 

@@ -287,8 +287,9 @@ class GapDistribution:
         Fraction of the non-contact area, lost first (ζ near 1), whose gap is not resolved (module docstring);
         in [1e-12, 0.01].
     zeta, area : array_like, optional
-        A numerical solution's stations (n_zeta,) and areas (n_zeta, n_loads) to use instead of the model's
-        closed form (``weight_cut`` then acts on the given stations only).
+        A numerical solution's stations (n_zeta,), increasing to zeta_max (A = 1 at zeta = 1 is added if absent),
+        and areas (n_zeta, n_loads) to use instead of the model's closed form (``weight_cut`` then acts on the
+        given stations only: the first bins that hold the cut mass are merged).
 
     Notes
     -----
@@ -326,12 +327,16 @@ class GapDistribution:
             A[:, 0] = 1.0
             cut_at = np.argmax(z_A[:, :1] <= z, axis=1)  # station of A_top: the end of the lump
         else:
-            z = np.broadcast_to(r.psd.check_zeta(as_float_array(zeta, "zeta")), (p.size, np.size(zeta)))
-            A = np.asarray(as_float_array(area, "area"), dtype=float).T
-            if A.shape != z.shape:
-                raise ValueError(f"area must have shape (n_zeta, n_loads) = {z.shape[::-1]}, got {A.shape[::-1]}")
-            if np.any(np.diff(z, axis=1) <= 0) or z[0, 0] != 1.0 or z[0, -1] != zmax:
-                raise ValueError("zeta must increase strictly from 1 to zeta_max")
+            z1 = r.psd.check_zeta(as_float_array(zeta, "zeta")).reshape(-1)
+            A = np.asarray(as_float_array(area, "area"), dtype=float).reshape(z1.size, -1).T
+            if A.shape != (p.size, z1.size) or np.size(area) != A.size:
+                raise ValueError(f"area must have shape (n_zeta, n_loads) = {(z1.size, p.size)}, got {np.shape(area)}")
+            if np.any(np.diff(z1) <= 0) or z1[-1] != zmax:
+                raise ValueError("zeta must increase strictly and end at zeta_max")
+            if z1[0] > 1.0:  # a solver's stations start after zeta = 1, where A = 1
+                z1 = np.concatenate(([1.0], z1))
+                A = np.concatenate((np.ones((p.size, 1)), A), axis=1)
+            z = np.broadcast_to(z1, (p.size, z1.size))
             A = np.minimum.accumulate(np.clip(A, 0.0, 1.0), axis=1)  # contact is only lost (eq:Area)
             A[:, 0] = 1.0
             A_end = A[:, -1]

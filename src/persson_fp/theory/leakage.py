@@ -91,9 +91,10 @@ def effective_medium_gap(gaps) -> np.ndarray:
 
     a logistic kernel in :math:`y = \ln(u/u_e)` against a smooth S (the integrand :math:`f` itself is a near-step
     in u, which Gauss-Hermite rules on the folded normals do not integrate).  S is tabulated per load on 160
-    log-spaced gaps spanning 6 decades below the largest gap (S = 0 beyond) and interpolated linearly in ln u, the kernel
-    integrated by the trapezoidal rule (step 0.25 on [-12, 12]: below 1e-10), the root in :math:`\ln u_e` found by
-    bisection to 1e-13.  Measured: within 6e-4 relative of a 512-point, 8-decade table on the reference surface.
+    log-spaced gaps spanning 6 decades below the largest gap (S = 0 beyond) and interpolated linearly in ln u, the
+    kernel integrated by the trapezoidal rule (step 0.25 on [-12, 12]: below 1e-10), the root in :math:`\ln u_e`
+    found by bisection to 1e-13.  Measured: within 6e-4 relative of a 512-point, 8-decade table on the reference
+    surface.
 
     Parameters
     ----------
