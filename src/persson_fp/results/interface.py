@@ -196,9 +196,22 @@ def contact_conductance(problem, resistivity=None, thermal_conductivity=None, we
     -------
     float or ndarray
         S/m² (electrical) or W/(m² K) (thermal) in SI units, per load.
+
+    Raises
+    ------
+    ValueError
+        Not exactly one of the two pairs, a value not > 0, or a load at complete contact (unbounded conductance).
     """
     _check(problem)
-    K = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting).stiffness(problem.p_bar)
+    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
+    dU = ms.dU_dp(problem.p_bar)
+    if np.any(dU <= 0):
+        bad = float(problem.p_bar[np.argmax(dU <= 0)])
+        raise ValueError(
+            f"p_bar = {bad:.6g} is complete contact to double precision (p_bar/sqrt(V) = {bad / ms.sigma_max:.3g}): "
+            "the stiffness and the constriction conductance are unbounded there; use p_bar < ~10 sqrt(V(zeta_max))"
+        )
+    K = problem.p_bar / dU
     return _out(problem, _leak.barber_conductance(K, problem.E_star, resistivity, thermal_conductivity))
 
 
