@@ -41,8 +41,23 @@ def _check(problem):
         raise ValueError("the gap physics is the elastic theory's: a problem with a hardness is not covered")
 
 
+_RESOLVED: dict = {}
+
+
 def _resolved(problem, weighting):
-    return MagnificationResolved(problem.psd, problem.E_star, problem.fudge, weighting)
+    # spectra are immutable values: the rule built for one (spectrum, E*, model, weighting) serves every call
+    key = (problem.psd, problem.E_star, problem.fudge, weighting)
+    try:
+        return _RESOLVED[key]
+    except (KeyError, TypeError):
+        r = MagnificationResolved(problem.psd, problem.E_star, problem.fudge, weighting)
+        if len(_RESOLVED) > 32:
+            _RESOLVED.clear()
+        try:
+            _RESOLVED[key] = r
+        except TypeError:  # an unhashable user model
+            pass
+        return r
 
 
 def _out(problem, x):
