@@ -16,7 +16,8 @@ from scipy.special import erf, erfinv
 import persson_fp as pf
 from persson_fp.theory import adhesion as adh
 from persson_fp.theory import leakage
-from persson_fp.theory.gaps import GapDistribution, MagnificationResolved
+from persson_fp.theory.gaps import GapDistribution
+from persson_fp.theory.resolved import MagnificationResolved
 
 PSD = pf.SelfAffinePSD.from_rms_slope(0.1, 0.8, 2 * np.pi, 8 * np.pi, 128 * np.pi)  # the BEM surfaces' spectrum
 LOADS = 0.1 * np.array([0.005, 0.02, 0.1, 0.5])  # p_bar / (E* g) = 0.005 ... 0.5 with E* = 1, g = 0.1

@@ -31,8 +31,9 @@ from persson_fp.sweeps.table import SweepResult
 from persson_fp.sweeps.table import read_table as read_sweep_table
 from persson_fp.theory import adhesion, fudge, hardness
 from persson_fp.theory.effective import EffectiveVariance, effective_variance
-from persson_fp.theory.gaps import GapDistribution, MagnificationResolved
+from persson_fp.theory.gaps import GapDistribution
 from persson_fp.theory.image import area_from_tau, image_pdf, variance_closed_form
+from persson_fp.theory.resolved import MagnificationResolved
 from persson_fp.theory.separation import (
     WEIGHTINGS,
     MeanSeparation,

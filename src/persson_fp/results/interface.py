@@ -18,7 +18,8 @@ from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.exact import exact
 from persson_fp.theory import adhesion as _adh
 from persson_fp.theory import leakage as _leak
-from persson_fp.theory.gaps import GapDistribution, MagnificationResolved
+from persson_fp.theory.gaps import GapDistribution
+from persson_fp.theory.resolved import MagnificationResolved
 from persson_fp.theory.separation import MeanSeparation
 
 __all__ = [
