@@ -135,6 +135,10 @@ class GapDistribution:
         self.truncation_shift = raw - W0 * c_first
         c = np.where(in_lump, c_first[:, None], c)
         hb = np.where(in_lump, hb[rows, cut_at][:, None], hb)
+        # the lump is one component: its mass on the first bin, the others emptied (fewer terms downstream)
+        w = np.where(in_lump, 0.0, w)
+        w[:, 0] = W0
+        c[:, 0], hb[:, 0] = c_first, hb[rows, cut_at]
         keep = w > 0
         self.weights = np.where(keep, w, 0.0)
         self.centres = np.where(keep, np.maximum(c, 0.0), 0.0)

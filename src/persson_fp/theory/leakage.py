@@ -122,7 +122,8 @@ def effective_medium_gap(gaps) -> np.ndarray:
     kern[[0, -1]] *= 0.5
     for i in range(0, live.size, 32):
         j = live[i : i + 32]
-        cj, hj, wj = c[j], h[j], w[j]
+        used = np.any(w[j] > 0, axis=0)  # components empty in every load of the chunk are skipped
+        cj, hj, wj = c[j][:, used], h[j][:, used], w[j][:, used]
         # the table ends where S = 0 to double precision (the largest gap plus ten widths, and a margin of e^0.5)
         v_hi = np.log(np.max(np.where(wj > 0, cj + 10.0 * hj, 0.0), axis=1)) + 0.5
         v = v_hi[:, None] + np.linspace(-6.0 * np.log(10.0), 0.0, 160)[None, :]
