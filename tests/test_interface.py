@@ -349,3 +349,8 @@ def test_separation_on_a_measured_spectrum():
     gd = pf.gap_distribution(pf.ContactProblem(tab, 1.0, p, fudge="WM17"))
     np.testing.assert_allclose(gd.normalisation, 1.0, atol=1e-14)
     assert np.all(np.isfinite(gd.std)) and np.all(gd.mean >= gd.mean_separation * (1 - 1e-12))
+
+
+def test_gap_distribution_repr_states_both_means_and_the_cut():
+    text = repr(pf.gap_distribution(pf.ContactProblem(PSD, 1.0, [0.002, 1e3], fudge="WM17")))
+    assert "u_bar" in text and "truncated mass" in text and "complete contact" in text

@@ -147,6 +147,24 @@ class GapDistribution:
         self.atom = A_end.copy()
         self.separation = u[:, 0].copy()
 
+    def __repr__(self):
+        rows = [
+            f"  p_bar={p:.4g}: contact {a:.4g}, mean gap {m:.4g} vs u_bar {u:.4g} ({m / u - 1:+.1%}: mirror term "
+            f"and cut), std {sd:.4g}; truncated mass {tw:.1e} (mean +{ts:.2g} without the cut)"
+            for p, a, m, u, sd, tw, ts in zip(
+                self.p_bar,
+                self.atom,
+                self._mean(),
+                self.separation,
+                np.atleast_1d(self.std) if not self.scalar else [self.std],
+                self.truncated_weight,
+                self.truncation_shift,
+            )
+            if u > 0
+        ] + [f"  p_bar={p:.4g}: complete contact (no gap)" for p, u in zip(self.p_bar, self.separation) if u <= 0]
+        more = "" if len(rows) <= 5 else f"\n  ... {len(rows) - 5} more loads"
+        return "GapDistribution (Almqvist et al. 2011)\n" + "\n".join(rows[:5]) + more
+
     @property
     def n_loads(self) -> int:
         """Number of loads."""
