@@ -172,3 +172,21 @@ def test_batch_scaling_quick(tmp_path):
         if r["method"] != "exact":
             # defaults: sines to ~1e-13, fv and mol to their documented ~1e-6 .. 1e-5 in |dA*|
             assert r["max_area_error"] < 1e-4 and r["default_over_1_thread"] > 0
+
+
+def test_interface_vs_bem_quick(tmp_path):
+    """Gap histograms, leak rates and adhesion against the shipped BEM data, within the theory's known bands."""
+    out = _module("interface_vs_bem").main(["--quick", "--output", str(tmp_path)])
+    # 3 models x 2 spectra x 7 loads (one surface in --quick)
+    assert len(_rows(tmp_path / "interface_vs_bem_gaps.csv")) == len(out["gaps"]) == 42
+    ks = [r["ks"] for r in out["gaps"] if r["model"] != "Persson"]
+    assert max(ks) < 0.15
+    for r in out["leakage"]:
+        if r["pbar_norm"] <= 0.1 and r["model"] != "Persson":
+            assert 0.5 < r["ratio_em"] < 2.5 and 0.8 < r["ratio_cj"] < 5
+        if r["pbar_norm"] == 0.5:
+            assert r["Q_critical_junction"] == r["Q_effective_medium"] == 0.0
+    for p in out["pull_off"]:
+        if p["model"] != "Persson":
+            assert -0.35 < p["rel_error"] < 0.05
+    assert "Kolmogorov" in (tmp_path / "interface_vs_bem.md").read_text()

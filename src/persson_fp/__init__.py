@@ -11,6 +11,13 @@ from persson_fp.problems.contact import ContactProblem
 from persson_fp.problems.fokker_planck import FokkerPlanckProblem
 from persson_fp.results.energy import elastic_energy, pressure_spectrum
 from persson_fp.results.exact import ExactSolution, exact
+from persson_fp.results.interface import (
+    AdhesiveContact,
+    adhesive_contact,
+    contact_conductance,
+    gap_distribution,
+    leak_rate,
+)
 from persson_fp.results.solution import Comparison, InstabilityError, Solution, SolverError
 from persson_fp.solvers import METHODS, available_methods, solve
 from persson_fp.surfaces.conventions import CONVENTIONS, abel_factor, abel_forward, abel_inverse
@@ -22,9 +29,11 @@ from persson_fp.sweeps.quantities import QUANTITIES, register_quantity
 from persson_fp.sweeps.run import SweepError, sweep
 from persson_fp.sweeps.table import SweepResult
 from persson_fp.sweeps.table import read_table as read_sweep_table
-from persson_fp.theory import fudge, hardness
+from persson_fp.theory import adhesion, fudge, hardness
 from persson_fp.theory.effective import EffectiveVariance, effective_variance
+from persson_fp.theory.gaps import GapDistribution
 from persson_fp.theory.image import area_from_tau, image_pdf, variance_closed_form
+from persson_fp.theory.resolved import MagnificationResolved
 from persson_fp.theory.separation import (
     WEIGHTINGS,
     MeanSeparation,
@@ -80,4 +89,13 @@ __all__ = [
     "QUANTITIES",
     "register_quantity",
     "read_sweep_table",
+    # what happens in the gaps
+    "MagnificationResolved",
+    "GapDistribution",
+    "gap_distribution",
+    "leak_rate",
+    "contact_conductance",
+    "adhesion",
+    "adhesive_contact",
+    "AdhesiveContact",
 ]

@@ -4,7 +4,9 @@ Reads a height map (``.npy``, or a text table of heights) or a contact.engineeri
 prints the spectrum's convention, rms height and slope (checked against the height data), and writes for a
 range of loads, for every fudge model: the contact area A* (Xu et al. tutorial, ``eq:Area_Persson``), the
 mean separation u and the normal stiffness K = -dp/du (Persson, Phys. Rev. Lett. 99 (2007) 125502; Yang & Persson,
-J. Phys.: Condens. Matter 20 (2008) 215214) as a CSV with units and a PNG.
+J. Phys.: Condens. Matter 20 (2008) 215214) as a CSV with units and a PNG; and what happens in the gaps: the mean of
+the gap distribution, the leak rate of a square seal (``--viscosity``, ``--pressure-drop``; Lorenz & Persson, Eur.
+Phys. J. E 31 (2010) 159) and Barber's conductance (Proc. R. Soc. Lond. A 459 (2003) 53).
 """
 
 from __future__ import annotations
@@ -33,6 +35,12 @@ def add_parser(sub):
         default="yang-persson",
         choices=["yang-persson", "corrected-area"],
         help="energy weighting of the fudge models (default yang-persson, the closer to BEM mean gaps)",
+    )
+    s.add_argument(
+        "--viscosity", type=float, default=1.0, help="fluid viscosity for the leak rate, pressure x time (default 1)"
+    )
+    s.add_argument(
+        "--pressure-drop", type=float, default=1.0, help="pressure drop across the seal, pressure (default 1)"
     )
     s.add_argument("--output", default="persson-fp-surface", help="folder for surface.csv / surface.png")
     s.set_defaults(func=cmd_surface)
@@ -79,7 +87,12 @@ def cmd_surface(args) -> int:
     ratio = np.geomspace(args.ratio_min, args.ratio_max, args.n_loads)
     p_bar = ratio * sV
     t0 = time.perf_counter()
+    if not (np.isfinite(args.viscosity) and args.viscosity > 0):
+        raise ValueError("--viscosity must be a finite number > 0 (pressure x time)")
+    if not (np.isfinite(args.pressure_drop) and args.pressure_drop > 0):
+        raise ValueError("--pressure-drop must be a finite number > 0 (pressure)")
     A, u, K, law = {}, {}, {}, {}
+    gaps, Q_cj, Q_em, C = {}, {}, {}, {}
     for name in FUDGES:
         f = None if name == "none" else name
         A[name] = np.atleast_1d(exact(ContactProblem(psd, E, p_bar, f)).contact_area)
@@ -87,6 +100,8 @@ def cmd_surface(args) -> int:
         u[name] = ms.mean_separation(p_bar)
         K[name] = ms.stiffness(p_bar)
         law[name] = ms.small_load_law()
+        gaps[name], Q_cj[name], Q_em[name] = _interface(psd, E, p_bar, f, args)
+        C[name] = 2.0 * K[name] / E  # Barber: C (rho1 + rho2) = 2K/E*
     wall = time.perf_counter() - t0
     print(f"E* = {E:.6g}, V(zeta_max) = {sV**2:.6e}, sqrt(V) = {sV:.6e}; energy weighting {args.weighting!r}")
     print(f"{'model':<6} {'u0 [length]':>13} {'beta':>11}   small-load law p_bar = beta E* exp(-u/u0)")
@@ -103,17 +118,39 @@ def cmd_surface(args) -> int:
             f"# E* = {E!r} (pressure); energy weighting {args.weighting!r}; units: p_bar in pressure, "
             "A dimensionless, u in length, K in pressure/length (the file's length unit)\n"
         )
+        fh.write(
+            f"# gap_mean: mean of the gap distribution P(u) (length); Q_cj, Q_em: leak rate of a square seal "
+            f"(critical junction, effective medium; length^3/time) for viscosity {args.viscosity!r} and pressure drop "
+            f"{args.pressure_drop!r}; C_rho: electrical conductance per area times (rho1 + rho2) = 2K/E* (1/length; "
+            "Barber 2003)\n"
+        )
         cols = ["p_bar", "p_bar_over_sqrtV"]
         cols += [f"A_{n}" for n in FUDGES] + [f"u_{n}" for n in FUDGES] + [f"K_{n}" for n in FUDGES]
+        cols += [f"{c}_{n}" for c in ("gap_mean", "Q_cj", "Q_em", "C_rho") for n in FUDGES]
         fh.write(",".join(cols) + "\n")
         for j in range(ratio.size):
             vals = [p_bar[j], ratio[j]] + [A[n][j] for n in FUDGES] + [u[n][j] for n in FUDGES]
             vals += [K[n][j] for n in FUDGES]
+            vals += [d[n][j] for d in (gaps, Q_cj, Q_em, C) for n in FUDGES]
             fh.write(",".join(f"{v:.12g}" for v in vals) + "\n")
     fig = _figure(psd, ratio, p_bar, A, u, K, surf.source)
     fig.savefig(os.path.join(out, "surface.png"), dpi=110)
     print(f"written {path} and surface.png")
     return 0
+
+
+def _interface(psd, E, p_bar, fudge, args):
+    """Mean gap, critical-junction and effective-medium leak rates (:mod:`persson_fp.results.interface`)."""
+    from persson_fp.problems.contact import ContactProblem
+    from persson_fp.results.interface import gap_distribution, leak_rate
+
+    problem = ContactProblem(psd, E, p_bar, fudge)
+    flow = dict(viscosity=args.viscosity, pressure_drop=args.pressure_drop)
+    return (
+        gap_distribution(problem, weighting=args.weighting).mean,
+        leak_rate(problem, method="critical-junction", weighting=args.weighting, **flow),
+        leak_rate(problem, method="effective-medium", weighting=args.weighting, **flow),
+    )
 
 
 def _figure(psd, ratio, p_bar, A, u, K, title):

@@ -16,7 +16,11 @@ Tutorial Based on Stochastic Process Theory"):
 
 When :mod:`persson_fp.theory.separation` is installed (mean interfacial separation, Persson, PRL 99 (2007)
 125502; Yang & Persson, J. Phys.: Condens. Matter 20 (2008) 215214), ``"mean_separation"`` and
-``"stiffness"`` are registered too.  Add your own with :func:`register_quantity`; a function used
+``"stiffness"`` are registered too.  What happens in the gaps (:mod:`persson_fp.results.interface`):
+``"gap_mean"`` (mean of P(u)), ``"leak_rate"`` (critical junction, Q eta/dp = u_c^3/12 for a square seal),
+``"conductance"`` (Barber's C (rho1 + rho2) = 2K/E*) and ``"pull_off"`` (DMT, an exponential law with
+w = 0.1 U_el of full contact and rho = h_rms; register your own law with ``functools.partial`` of
+:func:`persson_fp.adhesive_contact`).  Add your own with :func:`register_quantity`; a function used
 with a process pool or a cluster must be importable by name (a module-level ``def``, not a lambda).
 """
 
@@ -182,3 +186,51 @@ try:  # guarded: the module may not be there yet (any other import error inside 
 except ModuleNotFoundError as _err:  # pragma: no cover - depends on the installed version
     if _err.name != "persson_fp.theory.separation":
         raise
+
+
+# -- what happens in the gaps (persson_fp.results.interface) ---------------------------------------------------
+def _interface():
+    return importlib.import_module("persson_fp.results.interface")
+
+
+def _gap_mean(problem, solution):
+    return _interface().gap_distribution(problem).mean
+
+
+def _leak_rate(problem, solution):
+    return _interface().leak_rate(problem, viscosity=1.0, pressure_drop=1.0)
+
+
+def _conductance(problem, solution):
+    return _interface().contact_conductance(problem, resistivity=(0.5, 0.5))
+
+
+def _pull_off(problem, solution):
+    from persson_fp.theory.adhesion import Exponential
+
+    w = 0.1 * float(problem.psd.elastic_energy_complete(E_star=problem.E_star))
+    ad = _interface().adhesive_contact(problem, Exponential(w=w, rho=problem.psd.rms_height))
+    return np.full(problem.n_loads, ad.pull_off)
+
+
+register_quantity(
+    "gap_mean", _gap_mean, "length", "mean of the gap distribution P(u) (Almqvist et al., JMPS 59 (2011) 2355)"
+)
+register_quantity(
+    "leak_rate",
+    _leak_rate,
+    "length^3/time per (pressure drop/viscosity)",
+    "critical-junction leak rate Q eta/dp = u_c^3/12, aspect 1 (Lorenz & Persson, EPJE 31 (2010) 159)",
+)
+register_quantity(
+    "conductance",
+    _conductance,
+    "1/length per resistivity",
+    "electrical conductance per area C (rho1 + rho2) = 2K/E* (Barber, Proc. R. Soc. A 459 (2003) 53)",
+)
+register_quantity(
+    "pull_off",
+    _pull_off,
+    "pressure",
+    "DMT pull-off stress, exponential law w = 0.1 U_el(full contact), rho = h_rms (same for every load)",
+)

@@ -1,0 +1,356 @@
+"""Gap distribution, leak rate, conductance and DMT adhesion against independent references.
+
+References written here: Persson's mean separation of a truncated spectrum (a second PSD object), quadrature of
+the pdf, closed-form areas of a pure power law, Bruggeman for two phases, Hertz with Holm's constriction
+conductance, adaptive quadrature of the attraction, brute-force minimisation for the pull-off.
+"""
+
+import os
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.special import erf, erfinv
+
+import persson_fp as pf
+from persson_fp.theory import adhesion as adh
+from persson_fp.theory import leakage
+from persson_fp.theory.gaps import GapDistribution
+from persson_fp.theory.resolved import MagnificationResolved
+
+PSD = pf.SelfAffinePSD.from_rms_slope(0.1, 0.8, 2 * np.pi, 8 * np.pi, 128 * np.pi)  # the BEM surfaces' spectrum
+LOADS = 0.1 * np.array([0.005, 0.02, 0.1, 0.5])  # p_bar / (E* g) = 0.005 ... 0.5 with E* = 1, g = 0.1
+FUDGES = [None, "YP08", "WM17", "Xu24"]
+
+
+@pytest.mark.parametrize("fudge", FUDGES)
+def test_separation_at_zeta_1_is_persson_2007(fudge):
+    r = MagnificationResolved(PSD, 1.0, fudge)
+    ms = pf.MeanSeparation(PSD, 1.0, fudge)
+    # the stated accuracy of the magnification-resolved rule: 3e-5 relative (2 x 3 x 8 Gauss-Legendre nodes)
+    np.testing.assert_allclose(r.separation(LOADS, 1.0), ms.mean_separation(LOADS), rtol=1e-5)
+    assert np.all(r.separation(LOADS, PSD.zeta_max) == 0.0)
+
+
+@pytest.mark.parametrize("fudge", [None, "YP08"])
+@pytest.mark.parametrize("zeta", [1.7, 3.0, 9.0])
+def test_separation_at_zeta_is_that_of_the_truncated_spectrum(fudge, zeta):
+    # the spectrum above zeta q_l is the same power law with its lower cut-off moved: a second, independent PSD
+    trunc = pf.SelfAffinePSD(PSD.C0, PSD.H, zeta * PSD.q_l, max(PSD.q_r, zeta * PSD.q_l), PSD.q_s)
+    q = np.geomspace(trunc.q_l, trunc.q_s, 7)
+    np.testing.assert_allclose(trunc.C(q), PSD.C(q), rtol=1e-12)
+    r = MagnificationResolved(PSD, 1.0, fudge)
+    A = r.area(LOADS, zeta)
+    ref = pf.MeanSeparation(trunc, 1.0, fudge).mean_separation(LOADS / A)
+    np.testing.assert_allclose(r.separation(LOADS, zeta), ref, rtol=3e-5)
+
+
+@pytest.mark.parametrize(
+    "fudge", [None, "WM17", pytest.param("YP08", marks=pytest.mark.slow), pytest.param("Xu24", marks=pytest.mark.slow)]
+)
+def test_gap_distribution_normalisation_moments_and_mean(fudge):
+    gd = pf.gap_distribution(pf.ContactProblem(PSD, 1.0, LOADS, fudge=fudge))
+    np.testing.assert_allclose(gd.normalisation, 1.0, atol=1e-14)  # telescopes
+    # the discrete u1 keeps int (-A') u1 dzeta = u_bar exactly, the truncated part stated
+    total = np.sum(gd.weights * gd.centres, axis=1) + gd.truncation_shift
+    np.testing.assert_allclose(total, gd.mean_separation, rtol=1e-12)
+    assert np.all(gd.truncated_weight <= 1e-4 * (1 - gd.contact_fraction) * (1 + 1e-9))
+    for j in range(LOADS.size):
+        top = gd.centres[j].max() + 12 * gd.widths[j].max()
+
+        def pdf(u, j=j):
+            return float(gd.pdf(np.array([u]))[j, 0])
+
+        pts = np.linspace(0, top, 41)
+        m0 = sum(quad(pdf, a, b, epsabs=1e-13, limit=200)[0] for a, b in zip(pts[:-1], pts[1:]))
+        m1 = sum(quad(lambda u: u * pdf(u), a, b, epsabs=1e-16, limit=200)[0] for a, b in zip(pts[:-1], pts[1:]))
+        m2 = sum(quad(lambda u: u * u * pdf(u), a, b, epsabs=1e-19, limit=200)[0] for a, b in zip(pts[:-1], pts[1:]))
+        assert m0 + gd.contact_fraction[j] == pytest.approx(1.0, abs=1e-8)
+        assert m1 == pytest.approx(gd.mean[j], rel=1e-7)
+        assert m2 == pytest.approx(gd.second_moment[j], rel=1e-7)
+        # cdf: the atom at 0, the integral of the pdf beyond
+        u_mid = 0.5 * top
+        cdf_ref = gd.contact_fraction[j] + quad(pdf, 0, u_mid, epsabs=1e-13, limit=400)[0]
+        assert gd.cdf(np.array([u_mid]))[j, 0] == pytest.approx(cdf_ref, abs=1e-8)
+    assert np.all(gd.cdf(np.array([-1e-9])) == 0)
+    np.testing.assert_allclose(gd.cdf(np.array([0.0]))[:, 0], gd.contact_fraction, rtol=1e-14)
+    # the mirror term: the mean exceeds u_bar, little at light load
+    assert np.all(gd.mean >= gd.mean_separation * (1 - 1e-12))
+    assert gd.mean[0] / gd.mean_separation[0] < 1.01
+    assert np.all(np.isfinite(gd.std)) and np.all(gd.std < 3 * PSD.rms_height)
+
+
+def test_gap_distribution_scalar_load_sampler_and_u1():
+    gd = pf.gap_distribution(pf.ContactProblem(PSD, 1.0, 0.002, fudge="WM17"))
+    assert isinstance(gd.mean, float) and isinstance(gd.contact_fraction, float)
+    assert gd.pdf(np.linspace(0, 0.01, 200)).shape == (200,)
+    s = gd.sample(40000, rng=1)
+    assert np.mean(s == 0) == pytest.approx(gd.contact_fraction, abs=4 * np.sqrt(gd.contact_fraction / 40000))
+    assert np.mean(s) == pytest.approx(gd.mean, abs=4 * gd.std / np.sqrt(40000))
+    u1 = gd.u1(np.array([2.0, 10.0, 50.0]))
+    assert np.all(np.diff(u1) < 0) and np.all(u1 > 0)
+
+
+def test_gap_distribution_from_a_numerical_solution():
+    problem = pf.ContactProblem(PSD, 1.0, np.array([0.001, 0.01]), fudge="YP08")
+    sol = pf.solve(problem, "sines", zeta_out=np.geomspace(1.3, PSD.zeta_max, 200))  # stations after zeta = 1
+    gd_num = pf.gap_distribution(problem, sol)
+    gd = pf.gap_distribution(problem)
+    np.testing.assert_allclose(gd_num.normalisation, 1.0, atol=1e-14)
+    # u(zeta = 1) does not depend on the areas: the same number
+    np.testing.assert_allclose(gd_num.mean_separation, gd.mean_separation, rtol=1e-12)
+    # coarser stations (no refinement in A) and the lump [1, 1.3]: 1.4 % in the mean, 0.01 in the cdf measured
+    np.testing.assert_allclose(gd_num.mean, gd.mean, rtol=0.03)
+    u = np.linspace(0, 4 * PSD.rms_height, 50)
+    assert np.max(np.abs(gd_num.cdf(u) - gd.cdf(u))) < 0.02
+    with pytest.raises(ValueError, match="zeta_max"):
+        GapDistribution(MagnificationResolved(PSD), [0.001], zeta=[1.0, 2.0], area=[[1.0], [0.5]])
+
+
+def test_critical_junction_on_a_pure_power_law():
+    # no roll-off: V(zeta) = (pi/2) C0 q_l^(2-2H) (zeta^(2-2H) - 1)/(2-2H) (E* = 1), A = erf(p/sqrt(2V)) in closed form
+    H, q_l, q_s = 0.7, 1.0, 200.0
+    psd = pf.SelfAffinePSD(1e-4, H, q_l, q_l, q_s)
+    a = np.pi / 2 * psd.C0 * q_l ** (2 - 2 * H) / (2 - 2 * H)
+
+    def V(z):
+        return a * (z ** (2 - 2 * H) - 1)
+
+    np.testing.assert_allclose(psd.V(np.array([2.0, 50.0])), V(np.array([2.0, 50.0])), rtol=1e-12)
+    p = 0.02 * np.sqrt(V(q_s / q_l))
+    A_c = 0.42
+    z_c = (p**2 / (2 * erfinv(A_c) ** 2) / a + 1) ** (1 / (2 - 2 * H))
+    r = MagnificationResolved(psd, 1.0)
+    u_c, zc = leakage.critical_junction_gap(r, np.array([p]), A_c=A_c)
+    assert zc[0] == pytest.approx(z_c, rel=1e-9)
+
+    # u1 = u + u' A / A' with u from truncated spectra (MeanSeparation) and A' in closed form
+    def u_of(z):
+        trunc = pf.SelfAffinePSD(psd.C0, H, z * q_l, z * q_l, q_s)
+        return float(pf.MeanSeparation(trunc, 1.0).mean_separation(p / erf(p / np.sqrt(2 * V(z)))))
+
+    dz = 1e-3 * z_c
+    du = (u_of(z_c + dz) - u_of(z_c - dz)) / (2 * dz)
+    Vc = V(z_c)
+    dA = -p / np.sqrt(2 * np.pi) * Vc**-1.5 * np.exp(-(p**2) / (2 * Vc)) * a * (2 - 2 * H) * z_c ** (1 - 2 * H)
+    u1 = u_of(z_c) + du * A_c / dA
+    assert u_c[0] == pytest.approx(u1, rel=2e-3)
+    Q = leakage.flow_rate(u_c, viscosity=2.0, pressure_drop=3.0, aspect=0.5)
+    assert Q[0] == pytest.approx(0.5 * u1**3 * 3.0 / 24.0, rel=7e-3)
+
+
+def test_effective_medium_two_phases_and_sealing():
+    from scipy.optimize import brentq
+
+    def bruggeman(c, h, wts, A):  # the integral by adaptive quadrature of the pdf and a root find, written here
+        def pdf(u):
+            g = np.exp(-0.5 * ((u - c) / h) ** 2) + np.exp(-0.5 * ((u + c) / h) ** 2)
+            return np.sum(wts * g / (np.sqrt(2 * np.pi) * h))
+
+        def F(x):
+            s = x**3
+            pts = np.unique(np.concatenate(([0.0, x, 30.0], np.clip((c + np.outer([-3, 0, 3], h)).ravel(), 0, 30))))
+            return -A + sum(
+                quad(lambda u: (u**3 - s) / (u**3 + s) * pdf(u), a, b, epsabs=1e-13, limit=200)[0]
+                for a, b in zip(pts[:-1], pts[1:])
+            )
+
+        return brentq(F, 1e-3, 10.0, xtol=1e-12)
+
+    # contact (sigma = 0, fraction A) and one gap u0 = 2 (a normal of 20 % width: the theory's components are
+    # broader, h/u1 >= 0.35; narrower ones cost the table's linear interpolation of S a few percent)
+    for A in (0.0, 0.2, 0.45):
+        c, h, wts = np.array([2.0]), np.array([0.4]), np.array([1 - A])
+        fake = SimpleNamespace(centres=c[None], widths=h[None], weights=wts[None], atom=np.array([A]))
+        u_e = leakage.effective_medium_gap(fake)[0]
+        assert u_e == pytest.approx(bruggeman(c, h, wts, A), rel=3e-3)
+        if A < 0.4:  # two phases: sigma_e = sigma0 (1 - 2A), up to the spread (which matters near the threshold)
+            assert u_e**3 == pytest.approx(8.0 * (1 - 2 * A), rel=0.15)
+    # a broad mixture, as the theory's P(u) is
+    c, h, wts, A = np.array([0.5, 1.5, 3.0]), np.array([0.3, 0.6, 1.0]), np.array([0.3, 0.3, 0.2]), 0.2
+    fake = SimpleNamespace(centres=c[None], widths=h[None], weights=wts[None], atom=np.array([A]))
+    assert leakage.effective_medium_gap(fake)[0] == pytest.approx(bruggeman(c, h, wts, A), rel=1e-3)
+    fake = SimpleNamespace(
+        centres=np.array([[2.0]]),
+        widths=np.array([[0.1]]),
+        weights=np.array([[0.45]]),
+        atom=np.array([0.55]),
+        n_loads=1,
+    )
+    assert leakage.effective_medium_gap(fake)[0] == 0.0
+    problem = pf.ContactProblem(PSD, 1.0, LOADS, fudge="WM17")
+    for method in ("critical-junction", "effective-medium"):
+        Q = pf.leak_rate(problem, viscosity=1.0, pressure_drop=1.0, method=method)
+        assert Q[-1] == 0.0 and np.all(Q[:-1] > 0) and np.all(np.diff(Q) <= 0)
+        Q2 = pf.leak_rate(problem, viscosity=2.0, pressure_drop=4.0, aspect=3.0, method=method)
+        np.testing.assert_allclose(Q2, 6.0 * Q, rtol=1e-12)
+    out = pf.leak_rate(problem, 1.0, 1.0, full_output=True)
+    assert out["sealed"].tolist() == [False, False, False, True]
+
+
+def test_barber_relation_is_exact_for_hertz():
+    # Hertz: P = 4/3 E* R^1/2 d^3/2, a = sqrt(R d); Holm: C = 4a/(rho1 + rho2), thermal 4a/(1/k1 + 1/k2)
+    E, R, d = 3.0, 0.02, 1e-5
+    P = lambda x: 4.0 / 3.0 * E * np.sqrt(R) * x**1.5  # noqa: E731
+    K = (P(d * (1 + 1e-6)) - P(d * (1 - 1e-6))) / (2e-6 * d)
+    a = np.sqrt(R * d)
+    C = leakage.barber_conductance(K, E, resistivity=(1.7e-8, 2.8e-8))
+    assert float(C) == pytest.approx(4 * a / (1.7e-8 + 2.8e-8), rel=1e-9)
+    h = leakage.barber_conductance(K, E, thermal_conductivity=(400.0, 50.0))
+    assert float(h) == pytest.approx(4 * a / (1 / 400.0 + 1 / 50.0), rel=1e-9)
+    problem = pf.ContactProblem(PSD, 1.0, LOADS)
+    C = pf.contact_conductance(problem, resistivity=(1.0, 3.0))
+    np.testing.assert_allclose(C, 2 * pf.contact_stiffness(problem) / 4.0, rtol=1e-14)
+
+
+@pytest.mark.parametrize(
+    "inter", [adh.Exponential(w=1e-5, rho=8e-3), adh.MaugisDugdale(w=1e-5, sigma0=1e-3), adh.LennardJones93(1e-5, 5e-4)]
+)
+def test_folded_means_and_attraction_against_quadrature(inter):
+    assert (
+        quad(lambda u: float(inter.sigma(np.array(u))), 0, np.inf, points=None, limit=400)[0]
+        == pytest.approx(inter.w, rel=1e-8)
+        if not isinstance(inter, adh.MaugisDugdale)
+        else True
+    )
+    for c, h in [(0.0, 1e-3), (2e-3, 1e-3), (1e-2, 5e-4), (3e-4, 2e-2)]:
+        f = lambda u: (
+            float(inter.sigma(np.array(u)))
+            * (  # noqa: E731
+                np.exp(-0.5 * ((u - c) / h) ** 2) + np.exp(-0.5 * ((u + c) / h) ** 2)
+            )
+            / (np.sqrt(2 * np.pi) * h)
+        )
+        pts = sorted({0.0, inter.rho, max(c - 8 * h, 0), c, c + 8 * h, 30 * inter.rho})
+        ref = sum(quad(f, a, b, epsabs=0, epsrel=1e-11, limit=400)[0] for a, b in zip(pts[:-1], pts[1:]))
+        ref += quad(f, pts[-1], np.inf, limit=400)[0]
+        assert float(inter.folded_mean(c, h)) == pytest.approx(ref, rel=1e-7, abs=1e-12 * inter.w / inter.rho)
+    gd = pf.gap_distribution(pf.ContactProblem(PSD, 1.0, LOADS[:2], fudge="YP08"))
+    p_att = adh.attractive_stress(gd, inter)
+    for j in range(2):
+        f = lambda u, j=j: float(gd.pdf(np.array([u]))[j, 0] * inter.sigma(np.array(u)))  # noqa: E731
+        pts = np.unique(np.concatenate((np.linspace(0, 3 * inter.rho, 31), np.linspace(0, 0.03, 31))))
+        ref = sum(quad(f, a, b, epsabs=0, epsrel=1e-10, limit=200)[0] for a, b in zip(pts[:-1], pts[1:]))
+        ref += gd.contact_fraction[j] * float(inter.sigma(np.array(0.0)))
+        assert p_att[j] == pytest.approx(ref, rel=1e-6)
+
+
+def test_adhesive_contact_pull_off_by_brute_force_and_non_adhesive_limit():
+    problem = pf.ContactProblem(PSD, 1.0, LOADS, fudge="YP08")
+    inter = pf.adhesion.Exponential(w=1e-5, rho=8e-3)
+    ad = pf.adhesive_contact(problem, inter)
+    r = MagnificationResolved(PSD, 1.0, "YP08")
+    grid = np.geomspace(ad.p_rep_at_pull_off / 3, ad.p_rep_at_pull_off * 3, 801)
+    brute = np.min(grid - adh.attractive_stress(GapDistribution(r, grid), inter))
+    assert ad.pull_off == pytest.approx(-brute, rel=1e-5)
+    assert ad.pull_off >= -brute
+    assert not ad.info["pull_off_at_edge"] and 0 < ad.tabor < 1
+    np.testing.assert_array_equal(ad.p_applied, LOADS - ad.p_attractive)
+    # w -> 0: today's area and separation exactly; the attraction vanishes linearly in w
+    tiny = pf.adhesive_contact(problem, pf.adhesion.Exponential(w=1e-14, rho=8e-3))
+    np.testing.assert_array_equal(tiny.contact_area, pf.exact(problem).contact_area)
+    np.testing.assert_array_equal(tiny.mean_separation, pf.mean_separation(problem))
+    np.testing.assert_allclose(tiny.p_attractive, ad.p_attractive * 1e-9, rtol=1e-12)
+    # a callable law equal to the exponential one gives the same attraction
+    fn = lambda u: 1e-5 / 8e-3 * np.exp(-u / 8e-3)  # noqa: E731
+    same = pf.adhesive_contact(problem, fn, rho=8e-3)
+    np.testing.assert_allclose(same.p_attractive, ad.p_attractive, rtol=1e-6)
+    assert same.interaction.w == pytest.approx(1e-5, rel=1e-8)
+
+
+def test_stickiness_criteria():
+    pt = adh.persson_tosatti(PSD, 1.0, 1e-5)
+    s2 = float(PSD.grad2())
+    ref = quad(lambda x: np.sqrt(1 + x) * np.exp(-x / s2) / s2, 0, np.inf, epsrel=1e-12)[0]
+    assert pt["area_ratio"] == pytest.approx(ref, rel=1e-10)
+    assert pt["U_el"] == pytest.approx(float(PSD.elastic_energy_complete()), rel=1e-14)
+    assert not pt["sticky"] and adh.persson_tosatti(PSD, 1.0, 1e-4)["sticky"]
+    pr = adh.pastewka_robbins(PSD, 1.0, 1e-5, 8e-3)
+    h2 = 0.5 * np.sqrt(quad(lambda q: 2 * np.pi * q**5 * PSD.C(q), PSD.q_l, PSD.q_s, points=[PSD.q_r])[0])
+    ref = 0.1 * 8e-3 / (2e-5) * (0.01 / (h2 * 8e-3)) ** (2 / 3)
+    assert pr["number"] == pytest.approx(ref, rel=1e-8) and not pr["sticky"]
+
+
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda p: pf.leak_rate(p, viscosity=0.0, pressure_drop=1.0), "viscosity"),
+        (lambda p: pf.leak_rate(p, 1.0, -1.0), "pressure_drop"),
+        (lambda p: pf.leak_rate(p, 1.0, 1.0, aspect=np.inf), "aspect"),
+        (lambda p: pf.leak_rate(p, 1.0, 1.0, A_c=1.2), "A_c"),
+        (lambda p: pf.leak_rate(p, 1.0, 1.0, method="darcy"), "method"),
+        (lambda p: pf.contact_conductance(p), "exactly one"),
+        (lambda p: pf.contact_conductance(p, resistivity=(1.0,)), "resistivity"),
+        (lambda p: pf.adhesive_contact(p, "sticky"), "interaction"),
+        (lambda p: pf.adhesive_contact(p, lambda u: np.exp(-u)), "rho"),
+        (lambda p: pf.adhesion.Exponential(w=-1.0, rho=1.0), "w"),
+        (lambda p: pf.adhesion.MaugisDugdale(w=1.0, sigma0=0.0), "sigma0"),
+        (lambda p: pf.gap_distribution(p, weight_cut=0.5), "weight_cut"),
+        (lambda p: pf.gap_distribution(p).pdf(np.nan), "u"),
+        (lambda p: pf.gap_distribution("surface"), "ContactProblem"),
+    ],
+)
+def test_bad_input_raises_value_error_naming_the_parameter(call, match):
+    with pytest.raises(ValueError, match=match):
+        call(pf.ContactProblem(PSD, 1.0, 0.001))
+
+
+def test_sweep_quantities_are_the_front_ends():
+    problem = pf.ContactProblem(PSD, 1.0, np.array([1e-3, 1e-2]), fudge="YP08")
+    q = pf.QUANTITIES
+    np.testing.assert_array_equal(q["gap_mean"](problem, None), pf.gap_distribution(problem).mean)
+    np.testing.assert_array_equal(q["leak_rate"](problem, None), pf.leak_rate(problem, 1.0, 1.0))
+    np.testing.assert_allclose(q["conductance"](problem, None), 2 * pf.contact_stiffness(problem), rtol=1e-14)
+    w = 0.1 * float(PSD.elastic_energy_complete())
+    ad = pf.adhesive_contact(problem, pf.adhesion.Exponential(w=w, rho=PSD.rms_height))
+    np.testing.assert_array_equal(q["pull_off"](problem, None), [ad.pull_off] * 2)
+
+
+def test_surface_command_writes_gaps_leak_rate_and_conductance(tmp_path, capsys):
+    from persson_fp.cli.app import main
+
+    N = 128
+    d = np.load(
+        os.path.join(os.path.dirname(__file__), "..", "data", "bem", "surfaces", "surface_H0.8_seed1_modes.npz")
+    )
+    H = np.zeros((N, N), complex)
+    H[np.ix_(d["k"] % N, d["k"] % N)] = d["hq"]
+    h = np.real(np.fft.ifft2(H) * N * N)
+    np.save(tmp_path / "h.npy", h)
+    args = ["surface", str(tmp_path / "h.npy"), "--size", "1", "--periodic", "--n-loads", "4"]
+    assert main(args + ["--viscosity", "2", "--pressure-drop", "3", "--output", str(tmp_path / "o")]) == 0
+    lines = open(tmp_path / "o" / "surface.csv").read().splitlines()
+    rows = [ln.split(",") for ln in lines if not ln.startswith("#")]
+    cols, data = rows[0], np.array(rows[1:], dtype=float)
+    psd = pf.psd_from_heightmap(h, 1.0).psd
+    problem = pf.ContactProblem(psd, 1.0, data[:, cols.index("p_bar")], fudge="WM17")
+    Q = pf.leak_rate(problem, viscosity=2.0, pressure_drop=3.0)
+    np.testing.assert_allclose(data[:, cols.index("Q_cj_WM17")], Q, rtol=1e-10)
+    np.testing.assert_allclose(data[:, cols.index("gap_mean_WM17")], pf.gap_distribution(problem).mean, rtol=1e-10)
+    K = pf.contact_stiffness(problem)
+    np.testing.assert_allclose(data[:, cols.index("C_rho_WM17")], 2 * K, rtol=1e-10)
+    assert main(args + ["--viscosity", "0", "--output", str(tmp_path / "p")]) == 2
+    assert "--viscosity must be" in capsys.readouterr().err
+
+
+def test_separation_on_a_measured_spectrum():
+    t = np.genfromtxt(
+        os.path.join(os.path.dirname(__file__), "..", "data", "bem", "psd_shells_H0.8_seed1.csv"),
+        delimiter=",",
+        names=True,
+    )
+    keep = (t["n"] >= 1) & (t["n"] <= 64)
+    tab = pf.TabulatedPSD(t["q"][keep], t["C_shell_avg"][keep])
+    r = MagnificationResolved(tab, 1.0, "WM17")
+    p = np.sqrt(float(tab.V())) * np.array([1e-6, 1e-3, 0.1, 1.0])
+    # the shells' kinks are not split: ~3e-3 stated
+    np.testing.assert_allclose(r.separation(p, 1.0), pf.MeanSeparation(tab, 1.0, "WM17").mean_separation(p), rtol=5e-3)
+    gd = pf.gap_distribution(pf.ContactProblem(tab, 1.0, p, fudge="WM17"))
+    np.testing.assert_allclose(gd.normalisation, 1.0, atol=1e-14)
+    assert np.all(np.isfinite(gd.std)) and np.all(gd.mean >= gd.mean_separation * (1 - 1e-12))
+
+
+def test_gap_distribution_repr_states_both_means_and_the_cut():
+    text = repr(pf.gap_distribution(pf.ContactProblem(PSD, 1.0, [0.002, 1e3], fudge="WM17")))
+    assert "u_bar" in text and "truncated mass" in text and "complete contact" in text
