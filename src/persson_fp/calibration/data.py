@@ -87,17 +87,18 @@ def _column(raw, name, source, numeric=True):
 
 def _check_column(name, x, source):
     """Range checks of a known numeric column."""
-    if name == "p_bar":
+    kind = "err" if name.endswith(_ERR) else name
+    if kind == "p_bar":
         bad, what = x <= 0, "a load must be > 0 (pressure)"
-    elif name == "contact_area":
+    elif kind == "contact_area":
         bad, what = (x <= 0) | (x > 1), "a contact area must lie in (0, 1] (a relative error needs A* > 0)"
-    elif name == "mean_separation":
+    elif kind == "mean_separation":
         bad, what = x <= 0, "a mean separation must be > 0 (length)"
     else:  # an uncertainty column
         bad, what = x <= 0, "an uncertainty must be > 0"
     if np.any(bad):
         i = int(np.argmax(bad))
-        raise ValueError(f"column {name!r}, {_where(source, i)}: {what}, got {x[i]!r}")
+        raise ValueError(f"column {name!r}, {_where(source, i)}: {what}, got {float(x[i])!r}")
 
 
 def _read_csv(path):
@@ -184,7 +185,7 @@ def read_table(data, quantities=None) -> tuple[dict, str | None]:
         if len(cols[name]) != n:
             raise ValueError(f"{where}column {name!r} has {len(cols[name])} rows, column 'p_bar' {n}")
         out[name] = _column(cols[name], name, source)
-        _check_column(name.removesuffix(_ERR) if name.endswith(_ERR) else name, out[name], source)
+        _check_column(name, out[name], source)
     if "surface" in cols:
         out["surface"] = _column(cols["surface"], "surface", source, numeric=False)
     return out, source

@@ -41,15 +41,21 @@ class ModelSelection:
         One calibration per model, all of the same data.
     criterion : {"held-out", "aic", "bic"}
         The ranking criterion (module docstring).
+    held_out : (dict, str), optional
+        Held-out errors and scheme already computed for these fits (e.g. another selection's
+        ``(held_out, held_out_scheme)``); default: computed here (a refit per surface or load and model).
     """
 
-    def __init__(self, fits, criterion="held-out"):
+    def __init__(self, fits, criterion="held-out", held_out=None):
         if criterion not in CRITERIA:
             raise ValueError(f"criterion must be one of {list(CRITERIA)}, got {criterion!r}")
         self.fits, self.criterion = dict(fits), criterion
-        self.held_out = {}
-        for name, f in self.fits.items():
-            self.held_out[name], self.held_out_scheme = _held_out(f._obj, f.values, f.loss)
+        if held_out is None:
+            self.held_out = {}
+            for name, f in self.fits.items():
+                self.held_out[name], self.held_out_scheme = _held_out(f._obj, f.values, f.loss)
+        else:
+            self.held_out, self.held_out_scheme = dict(held_out[0]), held_out[1]
 
         def score(name):
             f = self.fits[name]
