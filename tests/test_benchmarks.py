@@ -172,3 +172,15 @@ def test_batch_scaling_quick(tmp_path):
         if r["method"] != "exact":
             # defaults: sines to ~1e-13, fv and mol to their documented ~1e-6 .. 1e-5 in |dA*|
             assert r["max_area_error"] < 1e-4 and r["default_over_1_thread"] > 0
+
+
+def test_calibration_vs_bem_quick(tmp_path):
+    rows, trans, speed = _module("calibration_vs_bem").main(["--quick", "--output", str(tmp_path)])
+    assert (tmp_path / "calibration_vs_bem.md").exists() and (tmp_path / "calibration_speed.csv").exists()
+    assert len(_rows(tmp_path / "calibration_vs_bem.csv")) == len(rows) + len(trans)
+    area = [r for r in rows if r["case"] == "A*, H=0.8"]
+    fitted = sum(r["err_contact_area"] for r in area if r["model"] == "YP08 fitted")
+    default = sum(r["err_contact_area"] for r in area if r["model"] == "YP08 γ=0.45")
+    assert fitted < default  # on the held-out surfaces, H = 0.8
+    assert all(0.4 < r["gamma"] < 0.65 for r in area if r["model"] == "YP08 fitted")
+    assert speed[0]["points"] == 21 and speed[0]["nfev"] < 40
