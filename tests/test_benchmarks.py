@@ -175,7 +175,7 @@ def test_batch_scaling_quick(tmp_path):
 
 
 def test_calibration_vs_bem_quick(tmp_path):
-    rows, trans, speed = _module("calibration_vs_bem").main(["--quick", "--output", str(tmp_path)])
+    rows, trans, speed, cov = _module("calibration_vs_bem").main(["--quick", "--output", str(tmp_path)])
     assert (tmp_path / "calibration_vs_bem.md").exists() and (tmp_path / "calibration_speed.csv").exists()
     assert len(_rows(tmp_path / "calibration_vs_bem.csv")) == len(rows) + len(trans)
     area = [r for r in rows if r["case"] == "A*, H=0.8"]
@@ -184,3 +184,4 @@ def test_calibration_vs_bem_quick(tmp_path):
     assert fitted < default  # on the held-out surfaces, H = 0.8
     assert all(0.4 < r["gamma"] < 0.65 for r in area if r["model"] == "YP08 fitted")
     assert speed[0]["points"] == 21 and speed[0]["nfev"] < 40
+    assert [r["draws"] for r in cov] == [5, 5] and (tmp_path / "calibration_coverage.csv").exists()

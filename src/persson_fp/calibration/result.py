@@ -19,6 +19,27 @@ _LABELS = {"contact_area": "A*", "mean_separation": "mean separation"}
 class Calibration:
     r"""A fitted fudge-factor model and its uncertainty (returned by :func:`persson_fp.calibrate`).
 
+    Parameters
+    ----------
+    objective : Objective
+        The data and the residuals (:class:`persson_fp.calibration.objective.Objective`).
+    theta : ndarray
+        The fitted parameter values.
+    cov : ndarray, shape (k, k)
+        Their covariance, :math:`s^2 (J^\mathsf{T}J)^{-1}`.
+    s2 : float
+        Residual variance :math:`s^2` (1 with ``absolute_sigma``).
+    jacobian : ndarray, shape (n, k)
+        Jacobian of the weighted residuals at ``theta``.
+    ls_result : scipy.optimize.OptimizeResult
+        The optimiser's result.
+    bootstrap : ndarray or None
+        Refitted parameters of each bootstrap resample, shape ``(n_boot, k)``.
+    wall_time : float, s
+        Time of the whole call.
+    loss : str or callable
+        The :func:`scipy.optimize.least_squares` loss used.
+
     Notes
     -----
     Attributes:
@@ -161,7 +182,13 @@ class Calibration:
         }
 
     def summary(self) -> str:
-        """A few lines: the fitted values ± uncertainty, the 95 % interval, the fit's error and its scope."""
+        """A few lines: the fitted values ± uncertainty, the 95 % interval, the fit's error and its scope.
+
+        Returns
+        -------
+        str
+            The summary (also what ``print(result)`` shows).
+        """
         ci = self.interval()
         lines = [
             f"{self.family.name} calibrated on {len(self.datasets)} surface(s), {self.n_points} points "

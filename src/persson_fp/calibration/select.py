@@ -66,7 +66,14 @@ class ModelSelection:
         self.best = fits[self.ranking[0]]
 
     def table(self) -> list[dict]:
-        """One row per model, best first: values ± uncertainty, fit error, held-out error, AIC, BIC."""
+        """One row per model, best first: values ± uncertainty, fit error, held-out error, AIC, BIC.
+
+        Returns
+        -------
+        list of dict
+            Keys ``rank``, ``model``, ``params`` (text), ``fit_mean_abs_rel_error``,
+            ``held_out_mean_abs_rel_error``, ``aic``, ``bic``.
+        """
         rows = []
         for rank, name in enumerate(self.ranking, 1):
             f = self.fits[name]
@@ -84,7 +91,13 @@ class ModelSelection:
         return rows
 
     def summary(self) -> str:
-        """The ranking as text, with the criterion stated."""
+        """The ranking as text, with the criterion stated.
+
+        Returns
+        -------
+        str
+            A table, best model first (also what ``print(selection)`` shows).
+        """
         how = {
             "held-out": f"held-out mean |relative error| ({self.held_out_scheme})",
             "aic": "AIC (Gaussian, lower is better)",
