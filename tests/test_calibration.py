@@ -138,6 +138,11 @@ def test_user_callable_matches_named_model():
     assert user.uncertainty["g"] == pytest.approx(named.uncertainty["gamma"], rel=1e-4)
     with pytest.raises(ValueError, match="p0"):
         pf.calibrate(PSD, {"p_bar": p, "contact_area": A}, model=S, params=("g",))
+    # a fudge instance: its value starts the fit, the same minimum is found
+    by_name = pf.calibrate(PSD, {"p_bar": p, "contact_area": A}, model="Xu24")
+    by_instance = pf.calibrate(PSD, {"p_bar": p, "contact_area": A}, model=pf.fudge.Xu24(0.3))
+    assert by_instance.params["gamma"] == pytest.approx(by_name.params["gamma"], abs=1e-7)
+    assert isinstance(by_instance.model, pf.fudge.Xu24)
 
 
 def test_input_forms_agree(tmp_path):

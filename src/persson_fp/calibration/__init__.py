@@ -1,10 +1,10 @@
 """Calibration: fit a fudge model's free parameters to a user's simulations or measurements, with uncertainty.
 
-:func:`calibrate` (in :mod:`persson_fp.calibration.fit`) returns a :class:`Calibration`
-(:mod:`persson_fp.calibration.result`), or for a list of models a :class:`ModelSelection`
-(:mod:`persson_fp.calibration.select`); data are read and checked by :mod:`persson_fp.calibration.data`, the
-parametric models built by :mod:`persson_fp.calibration.models`.  This package uses the closed forms (problems,
-results, theory) and imports no solver.
+:func:`persson_fp.calibrate` (module ``fit``) returns a :class:`persson_fp.Calibration` (module ``result``), or for a
+list of models a :class:`persson_fp.ModelSelection` (module ``select``); data are read and checked by
+:mod:`persson_fp.calibration.data`, the parametric models built by :mod:`persson_fp.calibration.models`, the
+residuals and the covariance computed by :mod:`persson_fp.calibration.objective`.  This package uses the closed
+forms (problems, results, theory) and imports no solver.
 """
 
 from persson_fp.calibration.data import QUANTITIES, Dataset, pair_surfaces, read_table

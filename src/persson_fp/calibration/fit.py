@@ -2,7 +2,7 @@ r"""Least-squares calibration of a fudge model's free parameters: :func:`calibra
 
 The residuals, the fit and the covariance are those of :mod:`persson_fp.calibration.objective`: relative
 residuals :math:`(f_i - y_i)/y_i` (or :math:`(f_i - y_i)/\sigma_i` with given uncertainties), minimised by
-:func:`scipy.optimize.least_squares`, :math:`\mathrm{cov}(\theta) = s^2 (J^\mathsf{T} J)^{-1}`.
+``scipy.optimize.least_squares``, :math:`\mathrm{cov}(\theta) = s^2 (J^\mathsf{T} J)^{-1}`.
 
 This module imports no solver.
 """
@@ -46,7 +46,7 @@ def calibrate(
 
     Least squares on relative errors of the contact area A*(p̄) and/or the mean separation ū(p̄) of one or
     several surfaces that share the parameters; uncertainty from the Jacobian,
-    :math:`\mathrm{cov} = s^2 (J^\mathsf{T}J)^{-1}` (module :mod:`persson_fp.calibration.fit`), and optionally a
+    :math:`\mathrm{cov} = s^2 (J^\mathsf{T}J)^{-1}` (:mod:`persson_fp.calibration.objective`), and optionally a
     bootstrap.  A calibration holds for the class of surfaces it was fitted on: check it on a held-out surface
     before using it for another class (:meth:`Calibration.predict`, and a list of models ranks them by a held-out
     error).
@@ -78,7 +78,7 @@ def calibrate(
     bounds : (sequence, sequence), optional
         Parameter bounds (default the range the model accepts).
     loss : str or callable
-        :func:`scipy.optimize.least_squares` loss (``"linear"``: least squares; ``"soft_l1"``, ``"huber"``,
+        ``scipy.optimize.least_squares`` loss (``"linear"``: least squares; ``"soft_l1"``, ``"huber"``,
         ... for outliers: the covariance is then only indicative).
     absolute_sigma : bool
         With uncertainty columns: take them as absolute (s² = 1) instead of as relative weights.

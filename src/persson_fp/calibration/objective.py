@@ -6,13 +6,13 @@ The residual of a measured value :math:`y_i` (contact area or mean separation of
 :math:`r_i = \sqrt{w_q}\,(f_i - y_i)/\sigma_i`.  :math:`f` is the closed form of the fudge-factor theory
 (Xu et al. tutorial, ``eq:Area_Persson`` at the effective variance of ``eq:new_B2``, via :func:`persson_fp.exact`)
 and Persson's mean separation (:class:`persson_fp.MeanSeparation`).  The parameters minimise
-:math:`\sum r_i^2` (:func:`scipy.optimize.least_squares`, trust-region reflective within the model's bounds),
+:math:`\sum r_i^2` (``scipy.optimize.least_squares``, trust-region reflective within the model's bounds),
 and their covariance is the Gauss--Newton one,
 
 .. math::  \mathrm{cov}(\theta) = s^2 (J^\mathsf{T} J)^{-1}, \qquad s^2 = \frac{\sum r_i^2}{n - k},
 
 with J the Jacobian of the residuals at the optimum (central differences) and n points, k parameters
-(with ``absolute_sigma=True`` and given uncertainties, :math:`s^2 = 1`, as in :func:`scipy.optimize.curve_fit`).
+(with ``absolute_sigma=True`` and given uncertainties, :math:`s^2 = 1`, as in ``scipy.optimize.curve_fit``).
 A bootstrap over the data points (pairs resampled with replacement, each resample refitted) is optional.
 
 This module imports no solver.

@@ -38,7 +38,7 @@ class Calibration:
     wall_time : float, s
         Time of the whole call.
     loss : str or callable
-        The :func:`scipy.optimize.least_squares` loss used.
+        The ``scipy.optimize.least_squares`` loss used.
 
     Notes
     -----

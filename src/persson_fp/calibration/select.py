@@ -3,7 +3,7 @@ r"""Model selection: fit several fudge models to the same data and rank them (:c
 Criteria (stated in every table):
 
 ``"held-out"`` (default)
-    Mean |relative error| of predictions for data not used in the fit: leave one surface out (fit on the
+    Mean absolute relative error of predictions for data not used in the fit: leave one surface out (fit on the
     others, predict it) when there are two or more surfaces, else leave one load out.  It measures what a user
     wants -- how well the calibrated model predicts a new surface of the same class.
 ``"aic"``, ``"bic"``
@@ -31,7 +31,7 @@ class ModelSelection:
     Notes
     -----
     Attributes: ``fits`` (dict model name -> :class:`~persson_fp.calibration.result.Calibration`), ``held_out``
-    (dict name -> mean |relative error| of the held-out predictions), ``held_out_scheme`` ("leave one surface
+    (dict name -> mean absolute relative error of the held-out predictions), ``held_out_scheme`` ("leave one surface
     out" or "leave one load out"), ``criterion``, ``ranking`` (names, best first), ``best`` (the best
     :class:`Calibration`).
 
