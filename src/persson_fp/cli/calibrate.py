@@ -33,7 +33,7 @@ def add_parser(sub) -> argparse.ArgumentParser:
     ca = sub.add_parser(
         "calibrate", help=HELP, description=HELP, epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter
     )
-    ca.add_argument("data", help="CSV with p_bar and contact_area and/or mean_separation (module help above)")
+    ca.add_argument("data", help="CSV with p_bar and contact_area and/or mean_separation (see below)")
     ca.add_argument("--psd", nargs="+", required=True, help="spectrum CSV file(s), columns q,C (one per surface)")
     ca.add_argument("--q-column", default="q", help="wavenumber column of the spectra (default q)")
     ca.add_argument("--C-column", dest="C_column", default="C", help="PSD column of the spectra (default C)")
