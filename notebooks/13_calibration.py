@@ -170,6 +170,7 @@ fig = both.plot()
 SUMMARY["g_sep"] = f"{sep.params['gamma']:.2f}"
 SUMMARY["g_sep_sd"] = f"{sep.uncertainty['gamma']:.2f}"
 SUMMARY["g_both"] = f"{both.params['gamma']:.2f}"
+SUMMARY["g_both_sd"] = f"{both.uncertainty['gamma']:.2f}"
 
 # %% [markdown]
 # ## 6. Your own model: any S(A*; θ)
@@ -189,6 +190,8 @@ print(two)
 corr = two.cov[0, 1] / np.sqrt(two.cov[0, 0] * two.cov[1, 1])
 print(f"correlation of a and b: {corr:+.2f}; AIC {two.aic:.1f} against YP08's {cal.aic:.1f}")
 SUMMARY["corr"] = f"{corr:+.2f}"
+SUMMARY["a"] = f"{two.params['a']:.3f} ± {two.uncertainty['a']:.3f}"
+SUMMARY["b"] = f"{two.params['b']:.2f} ± {two.uncertainty['b']:.2f}"
 
 # %%
 display(
@@ -218,7 +221,7 @@ print("all checks passed")
 # * **A calibration holds for a surface class.** γ fitted at H = 0.8 predicts H = 0.3 at 4.7% — worse than the default
 #   γ. Calibrate on surfaces like the ones you will predict, and check on a held-out one.
 # * **A* and ū want different γ.** Fitted to the mean separation alone, γ = 0.32 ± 0.03, far below the 0.532 of the
-#   contact area; the joint fit settles at 0.47 with a much larger error than either alone. One γ of YP08 (with the
+#   contact area; the joint fit settles at 0.47 ± 0.02 with a much larger error than either alone. One γ of YP08 (with the
 #   Yang–Persson energy weighting) does not describe both quantities of these surfaces.
-# * **Two parameters** ($S = a + (1-a)A^{*b}$): b is poorly determined and correlated with a (+0.65), and the fit
+# * **Two parameters** ($S = a + (1-a)A^{*b}$): a = 0.522 ± 0.012, b = 1.63 ± 0.25, correlated (+0.65), and the fit
 #   does not improve on YP08's AIC: the data do not support a second parameter.
