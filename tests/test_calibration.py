@@ -261,3 +261,18 @@ def test_surfaces_and_tables_must_pair():
         pf.calibrate([PSD] * 2, {"p_bar": p, "contact_area": A})
     with pytest.raises(ValueError, match=r"column 'surface', row 0: 'x' names no surface"):
         pf.calibrate({"a": PSD, "b": PSD}, {"p_bar": p, "contact_area": A, "surface": ["x"] * 7})
+
+
+def test_weights_scale_the_quantities(rng):
+    # A* from gamma = 0.45 and a separation from gamma = 0.6 (inconsistent on purpose): a tiny weight on the
+    # separation leaves the A*-only fit, a huge one gives the separation-only fit
+    A = xu24_area(LOADS, 0.45)
+    u = pf.MeanSeparation(PSD, 1.0, pf.fudge.Xu24(0.6)).mean_separation(LOADS)
+    both = {"p_bar": LOADS, "contact_area": A, "mean_separation": u}
+    g_area = pf.calibrate(PSD, both, model="Xu24", weights={"mean_separation": 1e-12}).params["gamma"]
+    g_sep = pf.calibrate(PSD, both, model="Xu24", weights={"contact_area": 1e-12}).params["gamma"]
+    g_mid = pf.calibrate(PSD, both, model="Xu24").params["gamma"]
+    assert g_area == pytest.approx(0.45, abs=1e-5) and g_sep == pytest.approx(0.6, abs=1e-5)
+    assert 0.45 < g_mid < 0.6
+    with pytest.raises(ValueError, match="weights"):
+        pf.calibrate(PSD, both, model="Xu24", weights={"contact_area": 0.0})
