@@ -190,3 +190,14 @@ def test_interface_vs_bem_quick(tmp_path):
         if p["model"] != "Persson":
             assert -0.35 < p["rel_error"] < 0.05
     assert "Kolmogorov" in (tmp_path / "interface_vs_bem.md").read_text()
+def test_calibration_vs_bem_quick(tmp_path):
+    rows, trans, speed, cov = _module("calibration_vs_bem").main(["--quick", "--output", str(tmp_path)])
+    assert (tmp_path / "calibration_vs_bem.md").exists() and (tmp_path / "calibration_speed.csv").exists()
+    assert len(_rows(tmp_path / "calibration_vs_bem.csv")) == len(rows) + len(trans)
+    area = [r for r in rows if r["case"] == "A*, H=0.8"]
+    fitted = sum(r["err_contact_area"] for r in area if r["model"] == "YP08 fitted")
+    default = sum(r["err_contact_area"] for r in area if r["model"] == "YP08 γ=0.45")
+    assert fitted < default  # on the held-out surfaces, H = 0.8
+    assert all(0.4 < r["gamma"] < 0.65 for r in area if r["model"] == "YP08 fitted")
+    assert speed[0]["points"] == 21 and speed[0]["nfev"] < 40
+    assert [r["draws"] for r in cov] == [5, 5] and (tmp_path / "calibration_coverage.csv").exists()

@@ -7,6 +7,7 @@ physics around it, and numerical solvers behind :func:`solve`.
 """
 
 from persson_fp._version import __version__
+from persson_fp.calibration import Calibration, ModelSelection, calibrate
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.problems.fokker_planck import FokkerPlanckProblem
 from persson_fp.results.energy import elastic_energy, pressure_spectrum
@@ -98,4 +99,8 @@ __all__ = [
     "adhesion",
     "adhesive_contact",
     "AdhesiveContact",
+    # calibration
+    "calibrate",
+    "Calibration",
+    "ModelSelection",
 ]

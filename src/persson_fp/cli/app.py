@@ -47,6 +47,8 @@ commands:
   surface  a measured surface (height map or contact.engineering CSV) -> spectrum, A*, mean separation,
            stiffness for a range of loads, every fudge model (CSV + PNG)
   sweep    a folder of surfaces (CSV spectra) x fudge models x loads into one table (CSV or Parquet)
+  calibrate  fit a fudge model's gamma to your A*(p_bar) / mean-separation data, with uncertainty;
+           several models ranked by held-out error
 
 examples:
   persson-fp
@@ -55,6 +57,7 @@ examples:
   persson-fp solve --psd-csv my_psd.csv --E-star 2.1e11 --p-bar 1e6 --method sines
   persson-fp area --n-loads 200 --output area/
   persson-fp surface heights.npy --size 1e-3 --E-star 2.1e11 --output surf/
+  persson-fp calibrate data.csv --psd psd.csv --model YP08 WM17 Xu24
 
 Equation labels such as eq:Area_Persson or E:PSD are those of Y. Xu, X. Li, Q. Chen, Y. Zhou, "Persson's
 Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic Process Theory".
@@ -423,6 +426,9 @@ def build_parser() -> argparse.ArgumentParser:
     from persson_fp.cli import sweep as cli_sweep
 
     cli_sweep.add_parser(sub)
+    from persson_fp.cli import calibrate as cli_calibrate
+
+    cli_calibrate.add_parser(sub)
     return parser
 
 
