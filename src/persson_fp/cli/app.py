@@ -19,7 +19,15 @@ import time
 import numpy as np
 
 from persson_fp._version import __version__
-from persson_fp.cli._io import CLIError, _atomic_open, _check_new_file, _make_parent, _note_replaced, _save_figure
+from persson_fp.cli._io import (
+    CLIError,
+    _atomic_open,
+    _check_new_file,
+    _count,
+    _make_parent,
+    _note_replaced,
+    _save_figure,
+)
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.energy import elastic_energy
 from persson_fp.results.exact import exact
@@ -67,6 +75,10 @@ MAX_LOADS = 1_000_000
 
 SURFACE_DEFAULTS = {"H": 0.8, "q_l": 1.0, "zeta_max": 128.0}
 """Defaults of the self-affine surface options (None in argparse, so that a given one can be told apart)."""
+
+
+MIN_TOL = 1e-12
+"""Smallest ``solve --tol``: below it the grids the methods would need exceed any machine."""
 
 
 def _progress(i, n, label, stream=sys.stderr):
@@ -238,6 +250,11 @@ def cmd_solve(args) -> int:
     _check_new_file(args.plot, args.force, "--plot")
     if args.seed is not None and args.method != "monte-carlo":
         raise CLIError("--seed: only used with --method monte-carlo")
+    for flag, v in (("--tol", args.tol), ("--rtol", args.rtol), ("--atol", args.atol)):
+        if v is not None and not (np.isfinite(v) and v > 0):
+            raise CLIError(f"{flag} must be a finite number > 0, got {v!r}")
+    if args.tol is not None and not MIN_TOL <= args.tol <= 0.1:
+        raise CLIError(f"--tol must lie in [{MIN_TOL:g}, 0.1] (accuracy of the contact area), got {args.tol!r}")
     pr = _problem(args)
     if args.hardness is not None:  # elastoplastic contact: a constant or power-law yield stress
         n = args.hardness_exponent
@@ -354,21 +371,6 @@ def cmd_area(args) -> int:
     return 0
 
 
-def _count(text: str) -> int:
-    """An integer argument; "1e6" is read as 1000000 (an integral number in any float notation)."""
-    try:
-        return int(text)
-    except ValueError:
-        pass
-    try:
-        x = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
-    if not (np.isfinite(x) and x == np.floor(x) and abs(x) < 2**63):
-        raise argparse.ArgumentTypeError(f"not an integer: {text!r}")
-    return int(x)
-
-
 class _Parser(argparse.ArgumentParser):
     """argparse with its errors on one line (no usage block): "persson-fp solve: error: ... (see --help)"."""
 
@@ -452,12 +454,25 @@ def main(argv=None) -> int:
         SolverError,
         OSError,
         MemoryError,
+        EOFError,
+        OverflowError,
     ) as err:
         print(f"persson-fp {argv[0] if argv else 'report'}: error: {_one_line(err)}", file=sys.stderr)
         return 2
 
 
-_USER_ERRORS = (CLIError, ValueError, TypeError, ImportError, NotImplementedError, SolverError, OSError, MemoryError)
+_USER_ERRORS = (
+    CLIError,
+    ValueError,
+    TypeError,
+    ImportError,
+    NotImplementedError,
+    SolverError,
+    OSError,
+    MemoryError,
+    EOFError,
+    OverflowError,
+)
 """Errors reported as one line (a solver's refusal, a breached invariant, a file that cannot be read or written)."""
 
 

@@ -49,6 +49,20 @@ def _check_loads(p_bar) -> np.ndarray:
     return pb
 
 
+def _warn_unit_slip(p_bar, E_star):
+    """Warn when a load exceeds the contact modulus (p_bar / E_star > 1): usually E* and p_bar in other units."""
+    ratio = float(np.max(p_bar)) / E_star
+    if ratio > 1.0:
+        import warnings
+
+        warnings.warn(
+            f"p_bar / E_star = {ratio:.3g} > 1: the nominal pressure exceeds the contact modulus (small-slope contact "
+            "has p_bar << E_star); are p_bar and E_star in the same unit (e.g. E_star in GPa with p_bar in Pa)?",
+            UserWarning,
+            stacklevel=3,
+        )
+
+
 class ContactProblem:
     """Persson's diffusion problem for one surface, one modulus and one or many loads.
 
@@ -124,6 +138,7 @@ class ContactProblem:
                 "range (V = E_star^2 <|grad h|^2> / 4, eq:VV_relation); rescale the pressure or length unit"
             )
         self._tau_max = None  # (n_loads,), on first use
+        _warn_unit_slip(self.p_bar, self.E_star)
         self._frozen = True
 
     # -- construction helpers ---------------------------------------------------
