@@ -280,9 +280,7 @@ def cmd_solve(args) -> int:
                 f"{1 - sol.contact_area_all[-1, j]:12.8f} {est['contact_area'][-1, j]:10.2e} "
                 f"{sol.load_all[-1, j] / pb - 1:13.2e}"
             )
-        if args.output or args.plot:
-            raise CLIError("--output/--plot: not available for a scale-dependent hardness yet (use the Python API)")
-        return 0
+        return _write_solution(args, sol, pr)
     cmp_ = sol.compare()
     if pr.hardness is not None:
         print("elastoplastic: A_pl (num) " + " ".join(f"{v:.8f}" for v in sol.plastic_area_all[-1]))
@@ -299,6 +297,11 @@ def cmd_solve(args) -> int:
             f"{np.reshape(sol.variance, (sol.zeta.size, -1))[-1, j]:12.5e} "
             f"{sol.load_all[-1, j] / pb - 1:13.2e} {cmp_.L1[-1, j]:10.2e}"
         )
+    return _write_solution(args, sol, pr)
+
+
+def _write_solution(args, sol, pr) -> int:
+    """Write ``--output`` (P0 at zeta_max, CSV or JSON) and ``--plot`` (:meth:`Solution.plot`)."""
     if args.output:
         path = args.output
         _make_parent(path, "--output")
@@ -317,9 +320,16 @@ def cmd_solve(args) -> int:
         else:
             with _atomic_open(path, "w", newline="") as fh:
                 w = csv.writer(fh)
-                w.writerow(["p"] + [f"P0(p_bar={pb:.6g})" for pb in pr.p_bar])
-                for i, p in enumerate(sol.p):
-                    w.writerow([f"{p:.12g}"] + [f"{v:.12g}" for v in sol.P0_all[-1, :, i]])
+                if np.ndim(sol.p) == 1:
+                    w.writerow(["p"] + [f"P0(p_bar={pb:.6g})" for pb in pr.p_bar])
+                    for i, p in enumerate(sol.p):
+                        w.writerow([f"{p:.12g}"] + [f"{v:.12g}" for v in sol.P0_all[-1, :, i]])
+                else:  # a grid per load (a moving yield wall): p and P0 columns for each load
+                    w.writerow([f"{c}(p_bar={pb:.6g})" for pb in pr.p_bar for c in ("p", "P0")])
+                    for i in range(np.shape(sol.p)[-1]):
+                        w.writerow(
+                            [f"{v:.12g}" for j in range(pr.n_loads) for v in (sol.p[j, i], sol.P0_all[-1, j, i])]
+                        )
         print(f"P0 at zeta_max written to {path}")
     if args.plot:
         _make_parent(args.plot, "--plot")

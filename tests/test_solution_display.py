@@ -1,0 +1,79 @@
+"""summary(), repr, HTML repr and plot() of a Solution on every problem kind: the true error where a closed form
+exists, the solver's own estimate where none does (a moving yield wall, general coefficients)."""
+
+import re
+
+import numpy as np
+import pytest
+
+import persson_fp as pf
+
+PSD = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=64.0)
+
+
+def _general():
+    dV = lambda z: float(PSD.dV_dzeta(z))  # noqa: E731
+    return pf.FokkerPlanckProblem(
+        PSD, p_bar=0.02, B1=lambda p, z: 0.3 * p * dV(z), B2=lambda p, z: 0.8 * np.ones_like(p) * dV(z)
+    )
+
+
+KINDS = {
+    "elastic": (lambda: pf.ContactProblem.reference(p_bar_ratio=[0.5, 1.0]), True),
+    "hardness": (lambda: pf.ContactProblem.reference(p_bar_ratio=0.5, hardness=0.1), True),
+    "moving wall": (
+        lambda: pf.ContactProblem(
+            pf.SelfAffinePSD.from_rms_slope(4.0, H=0.8, q_l=1.0, q_r=1.0, q_s=10.0),
+            p_bar=0.3,
+            hardness=pf.hardness.PowerLaw(1.0, 0.2),
+        ),
+        False,
+    ),
+    "general": (_general, False),
+}
+
+
+@pytest.mark.parametrize("kind", list(KINDS))
+def test_summary_repr_and_plot_on_every_problem_kind(kind):
+    make, closed = KINDS[kind]
+    pr = make()
+    assert pr.has_closed_form == closed
+    sol = pf.solve(pr, "fv", n_p=100, n_steps=60)
+    line = sol.summary()
+    r = repr(sol)
+    html = sol._repr_html_()
+    fig = sol.plot()
+    ax = fig.axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "fv (markers)" in labels  # the legend names the numerical markers, not only the lines
+    if closed:
+        c = sol.compare().final()
+        assert f"L1={c['L1']:.3e}" in line and f"|dA*|={c['area_error']:.3e}" in line
+        assert f"error={'='}{c['area_error']:.2e}" in r
+        assert "exact (lines)" in labels and ax.get_title().startswith("fv: L1 =")
+    else:
+        with pytest.raises(ValueError, match="no exact"):
+            sol.compare()
+        est = sol.error_estimate
+        dA = float(np.max(est["contact_area"][-1]))
+        assert "estimate" in line and f"|dA*|~{dA:.3e}" in line
+        # the load drift is the result's own: load / p_bar - 1
+        drift = float(np.max(np.abs(sol.load_all[-1] / pr.p_bar - 1)))
+        assert f"load drift={drift:.3e}" in line
+        assert f"error=~{dA:.2e}" in r
+        assert "no closed form" in ax.get_title() and f"{dA:.2e}" in ax.get_title()
+    if pr.hardness is not None:
+        assert re.search(r"A_pl=0\.\d+", line)
+    assert "Solution(" in r and "persson-fp Solution" in html
+
+
+def test_solve_command_writes_p0_and_plot_without_a_closed_form(tmp_path, capsys):
+    from persson_fp.cli.app import main
+
+    out, png = tmp_path / "p.csv", tmp_path / "p.png"
+    # a moving yield wall: --output / --plot used to be refused
+    argv = ["solve", "--hardness", "1", "--hardness-exponent", "0.2", "--n-p", "80", "--n-steps", "40"]
+    assert main([*argv, "--output", str(out), "--plot", str(png)]) == 0
+    rows = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert rows.shape == (80, 2) and png.stat().st_size > 0
+    assert "estimate" in capsys.readouterr().out
