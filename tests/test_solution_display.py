@@ -77,3 +77,19 @@ def test_solve_command_writes_p0_and_plot_without_a_closed_form(tmp_path, capsys
     rows = np.loadtxt(out, delimiter=",", skiprows=1)
     assert rows.shape == (80, 2) and png.stat().st_size > 0
     assert "estimate" in capsys.readouterr().out
+
+
+def test_readme_elastoplastic_example_shows_plasticity():
+    """The README's example: A_pl of order 0.1 under both walls, quiet (no oscillation warning), its numbers."""
+    import warnings
+
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=128.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ex = pf.exact(pf.ContactProblem(psd, p_bar=0.03, hardness=0.08))
+        pr2 = pf.ContactProblem(psd, p_bar=0.03, hardness=pf.hardness.PowerLaw(sigma_1=0.035, n=0.2))
+        sol = pf.solve(pr2, method="fv")
+    assert (round(float(ex.elastic_area), 3), round(float(ex.plastic_area), 3)) == (0.171, 0.290)
+    assert (round(float(sol.elastic_area[-1]), 3), round(float(sol.plastic_area[-1]), 3)) == (0.364, 0.117)
+    est = float(sol.error_estimate["plastic_area"][-1, 0])
+    assert 1e-5 < est < 1e-4 and "estimate" in sol.summary()
