@@ -67,6 +67,7 @@ def test_summary_repr_and_plot_on_every_problem_kind(kind):
     assert "Solution(" in r and "persson-fp Solution" in html
 
 
+@pytest.mark.filterwarnings("ignore:fv. P0 has negative values")  # a coarse grid, on purpose
 def test_solve_command_writes_p0_and_plot_without_a_closed_form(tmp_path, capsys):
     from persson_fp.cli.app import main
 

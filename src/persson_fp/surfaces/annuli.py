@@ -15,7 +15,7 @@ that has power.  Beyond the Nyquist circle the annuli are incomplete (the corner
 spread over the whole annulus, so that the spectrum carries it, and C there is below the isotropic spectrum by the
 missing fraction of the annulus.
 
-The rms slope of non-periodic data is taken by central differences (:func:`numpy.gradient`); the same operator
+The rms slope of non-periodic data is taken by central differences (``numpy.gradient``); the same operator
 applied to an isotropic spectrum gives :math:`\langle|\nabla_{\Delta} h|^2\rangle = 2\pi\int qC(q)K(q)\,dq`,
 :math:`K(q) = \sum_a (1 - J_0(2q\Delta_a))/(2\Delta_a^2)` (the angular mean of :math:`\sin^2(q_a\Delta_a)/
 \Delta_a^2`), which :func:`central_difference_slope` evaluates, so both sides use one definition.

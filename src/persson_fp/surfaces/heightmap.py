@@ -20,7 +20,7 @@ table with ``q_l``/``q_s`` inside it.
 
 rms slope, the same definition on both sides: for periodic data the exact (spectral) derivative,
 :math:`\sqrt{\sum_k q_k^2|\hat h_k|^2}` against :math:`\sqrt{2\pi\int q^3C\,dq}`; for non-periodic data, which
-have no periodic continuation, central differences (:func:`numpy.gradient`) against the same differences applied
+have no periodic continuation, central differences (``numpy.gradient``) against the same differences applied
 to the spectrum (:func:`persson_fp.surfaces.annuli.central_difference_slope`).  Non-periodic data are detrended
 (plane) and windowed (Tukey by default, normalised to keep the power).  The window weights the map's centre, so
 its estimate of the longest wavelengths varies by 10-40 % from crop to crop of one self-affine surface: the power
