@@ -94,3 +94,15 @@ def test_readme_elastoplastic_example_shows_plasticity():
     assert (round(float(sol.elastic_area[-1]), 3), round(float(sol.plastic_area[-1]), 3)) == (0.364, 0.117)
     est = float(sol.error_estimate["plastic_area"][-1, 0])
     assert 1e-5 < est < 1e-4 and "estimate" in sol.summary()
+
+
+def test_area_plot_asymptote_is_not_clipped_onto_a_plateau():
+    from persson_fp import plotting
+
+    ratio = np.geomspace(1e-3, 3.0, 200)
+    fig = plotting.plot_area_curve(
+        ratio, {"none": pf.exact(pf.ContactProblem.reference(p_bar_ratio=ratio)).contact_area}
+    )
+    line = [ln for ln in fig.axes[0].get_lines() if "asymptote" in ln.get_label()][0]
+    y = np.asarray(line.get_ydata(), float)
+    assert np.nanmax(y) <= 1.0 and np.all(np.isnan(y[np.sqrt(2 / np.pi) * ratio > 1]))  # no flat segment at 1

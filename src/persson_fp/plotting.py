@@ -147,7 +147,7 @@ def plot_area_curve(ratio: ArrayLike, curves: Mapping, ax: Axes | None = None, a
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; default a new figure.
     asymptote : bool
-        Also draw the small-load asymptote sqrt(2/pi) p_bar/sqrt(V) (``eq:Asymptote_1``).
+        Also draw the small-load asymptote sqrt(2/pi) p_bar/sqrt(V) (``eq:Asymptote_1``), where it is below 1.
 
     Returns
     -------
@@ -159,7 +159,9 @@ def plot_area_curve(ratio: ArrayLike, curves: Mapping, ax: Axes | None = None, a
         ax.plot(ratio, A, label=label)
     if asymptote:
         label = r"small-load asymptote $\sqrt{2/\pi}\,\bar p/\sqrt{V}$"
-        ax.plot(ratio, np.minimum(np.sqrt(2 / np.pi) * ratio, 1.0), "k:", lw=0.8, label=label)
+        small = np.sqrt(2 / np.pi) * np.asarray(ratio, dtype=float)
+        # drawn only where it is below 1 (a straight line ending at A* = 1), not clipped onto a plateau at 1
+        ax.plot(ratio, np.where(small <= 1.0, small, np.nan), "k:", lw=0.8, label=label)
     ax.set_xscale("log")
     ax.set_xlabel(r"$\bar p/\sqrt{V}$")
     ax.set_ylabel(r"$A^*$")
