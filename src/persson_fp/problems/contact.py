@@ -49,15 +49,17 @@ def _check_loads(p_bar) -> np.ndarray:
     return pb
 
 
-def _warn_unit_slip(p_bar, E_star):
+def _warn_unit_slip(p_bar, E_star, V_max):
     """Warn when a load exceeds the contact modulus (p_bar / E_star > 1): usually E* and p_bar in other units."""
     ratio = float(np.max(p_bar)) / E_star
     if ratio > 1.0:
         import warnings
 
         warnings.warn(
-            f"p_bar / E_star = {ratio:.3g} > 1: the nominal pressure exceeds the contact modulus (small-slope contact "
-            "has p_bar << E_star); are p_bar and E_star in the same unit (e.g. E_star in GPa with p_bar in Pa)?",
+            f"p_bar / E_star = {ratio:.3g} > 1 and p_bar / sqrt(V(zeta_max)) = {float(np.max(p_bar)) / V_max**0.5:.3g} "
+            "(V = E_star^2 <|grad h|^2> / 4): the nominal pressure exceeds the contact modulus, where small-slope "
+            "contact has p_bar << E_star and full contact already near p_bar = 3 sqrt(V); are p_bar and E_star in the "
+            "same unit (e.g. E_star in GPa with p_bar in Pa)?",
             UserWarning,
             stacklevel=3,
         )
@@ -138,7 +140,7 @@ class ContactProblem:
                 "range (V = E_star^2 <|grad h|^2> / 4, eq:VV_relation); rescale the pressure or length unit"
             )
         self._tau_max = None  # (n_loads,), on first use
-        _warn_unit_slip(self.p_bar, self.E_star)
+        _warn_unit_slip(self.p_bar, self.E_star, self._V_max)
         self._frozen = True
 
     # -- construction helpers ---------------------------------------------------
