@@ -7,7 +7,8 @@ annulus C is a power law :math:`A_j q^{s_j}` that carries the power :math:`\sum|
 spectrum carries the map's :math:`\langle h^2\rangle` to round-off.  In the first annuli, which hold a few lattice
 radii each, the exponent also carries their slope power :math:`\sum q_k^2|\hat h_k|^2`.  Above, where each annulus
 holds many modes spread evenly over it, its level is the mean C of its modes (the lattice count of an annulus
-differs from its area by a few % near :math:`10\cdot 2\pi/L`), times one factor that keeps their total power; its
+differs from its area by a few % near :math:`10\cdot 2\pi/L`), times a factor and a power of q (at most
+:math:`q^{\pm1}`) that keep their total power and slope power; its
 exponent is the trend of these levels (a least-squares line through the annulus and its two neighbours) plus one
 common tilt (at most 2) that makes their slope power sum to that of their modes: the spectrum carries the map's
 :math:`\langle|\nabla h|^2\rangle` too.  Empty annuli are merged into the next; the band ends with the last annulus
@@ -79,6 +80,24 @@ def _local_exponent(a, b, m2):
     return 0.5 * (lo + hi)
 
 
+def _levels(c, P, m2):
+    """Powers ``c F (m2 / m2[0])^(g/2)`` of annuli whose mean-C levels are ``c``: F and g (|g| <= 1) such that they
+    carry the modes' total power and slope power (sum P, sum P m2), so the lattice-count correction moves neither."""
+    w_target = np.sum(P * m2) / np.sum(P)
+
+    def weights(g):
+        w = c * (m2 / m2[0]) ** (0.5 * g)
+        return w * (np.sum(P) / np.sum(w))
+
+    lo, hi = -1.0, 1.0
+    if not np.sum(weights(lo) * m2) <= w_target * np.sum(P) <= np.sum(weights(hi) * m2):
+        return weights(0.0)
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if np.sum(weights(mid) * m2) < w_target * np.sum(P) else (lo, mid)
+    return weights(0.5 * (lo + hi))
+
+
 def _trend(x, y, half=1):
     """Local log-log slope: least-squares line through the points j - half .. j + half (fewer at the ends)."""
     out = np.empty_like(x)
@@ -136,7 +155,7 @@ def annulus_table(q_mode, power, step, bins_per_decade, q_full=np.inf):
     P = P_bin.copy()
     mean_C = P_bin / (count * step[0] * step[1])
     if np.any(many):
-        P[many] = mean_C[many] * area[many] * P_bin[many].sum() / np.sum(mean_C[many] * area[many])
+        P[many] = _levels(mean_C[many] * area[many], P_bin[many], m2[many])
     s = np.clip(_trend(0.5 * np.log(a * b), np.log(P / area)), -12.0, 4.0)
     s[wide] = _local_exponent(a[wide], b[wide], np.clip(m2[wide], a[wide] ** 2, b[wide] ** 2))
     s[~wide] += _common_tilt(a[~wide], b[~wide], s[~wide], P[~wide], P_bin[~wide] * m2[~wide])
