@@ -24,6 +24,13 @@ def _rows(name):
         return list(csv.DictReader(fh))
 
 
+def _speed(run, fudge, label, threshold, key="time"):
+    """A row of a speed_accuracy_table.csv (``run``: "" for the committed run, "rerun" for the re-run)."""
+    rows = _rows(f"{run}/speed_accuracy_table.csv" if run else "speed_accuracy_table.csv")
+    row = next(r for r in rows if r["fudge"] == fudge and r["label"] == label and float(r["threshold"]) == threshold)
+    return float(row[key])
+
+
 def _batch(method, n, key):
     row = next(r for r in _rows("batch_scaling.csv") if r["method"] == method and int(r["n_loads"]) == n)
     return float(row[key]) if row[key] else None
@@ -40,6 +47,34 @@ def _sig(x, n):
 
 # (README file, pattern with one group per number, the numbers from the results, significant digits)
 CLAIMS = {
+    "speed: sines vs py-pde at 1e-3 (README)": (
+        "README.md",
+        r"`sines` ([\d.]+) ms \(YP08 ([\d.]+) ms\) against py-pde's explicit Euler through `pf.solve` ([\d.]+) ms "
+        r"\(YP08 ([\d.]+) ms\): ([\d.]+)x and ([\d.]+)x in the committed run, ([\d.]+)x and ([\d.]+)x in a re-run",
+        lambda: [
+            _speed("", "none", "sines", 1e-3) * 1e3,
+            _speed("", "YP08", "sines", 1e-3) * 1e3,
+            _speed("", "none", "py-pde euler", 1e-3) * 1e3,
+            _speed("", "YP08", "py-pde euler", 1e-3) * 1e3,
+            _speed("", "none", "py-pde euler", 1e-3, "ratio_to_best_own"),
+            _speed("", "YP08", "py-pde euler", 1e-3, "ratio_to_best_own"),
+            _speed("rerun", "none", "py-pde euler", 1e-3, "ratio_to_best_own"),
+            _speed("rerun", "YP08", "py-pde euler", 1e-3, "ratio_to_best_own"),
+        ],
+        [2, 2, 2, 2, 3, 3, 3, 3],
+    ),
+    "speed: the re-run's ratios (benchmarks README)": (
+        "benchmarks/README.md",
+        r"benchmarks/results/rerun`\) measured ([\d.]+)x and ([\d.]+)x",
+        lambda: [_speed("rerun", f, "py-pde euler", 1e-3, "ratio_to_best_own") for f in ("none", "YP08")],
+        3,
+    ),
+    "speed: the re-run's times (README)": (
+        "README.md",
+        r"sines ([\d.]+) / ([\d.]+) ms, py-pde ([\d.]+) / ([\d.]+) ms\)",
+        lambda: [_speed("rerun", f, m, 1e-3) * 1e3 for m in ("sines", "py-pde euler") for f in ("none", "YP08")],
+        3,
+    ),
     "batch: BLAS threads (README)": (
         "README.md",
         r"which was ([\d.]+)x faster than numpy's two threads for mol \(100 loads\) and ([\d.]+)x for sines \(1000",
@@ -102,8 +137,10 @@ def test_readme_quotes_the_results_file(claim):
     doc, pattern, numbers, digits = CLAIMS[claim]
     m = re.search(pattern, _text(doc))
     assert m, f"{claim}: the sentence is no longer in {doc} (update CLAIMS with the README)"
-    quoted = [_sig(float(g), digits) for g in m.groups()]
-    measured = [_sig(v, digits) for v in numbers()]
+    values = numbers()
+    digits = digits if isinstance(digits, list) else [digits] * len(values)
+    quoted = [_sig(float(g), d) for g, d in zip(m.groups(), digits)]
+    measured = [_sig(v, d) for v, d in zip(values, digits)]
     assert quoted == measured, f"{claim}: {doc} says {quoted}, the results file {measured}"
 
 
