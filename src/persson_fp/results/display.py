@@ -15,10 +15,11 @@ def summary_line(sol) -> str:
     if sol.plastic_area_all is not None:
         plastic = f", A_pl={float(np.max(sol.plastic_area_all[-1])):.4g}"
     if sol.problem.has_closed_form:
-        c = sol.compare().final()
+        cmp_ = sol.compare()
+        c = cmp_.final()
         return (
             f"{head}, L1={c['L1']:.3e}, |dA*|={c['area_error']:.3e} ({c['area_error_rel']:.2e} relative), "
-            f"load drift={c['load_drift']:.3e}{plastic}"
+            f"load drift={c['load_drift']:.3e}{plastic}{_worst_station(sol, cmp_.L1, cmp_.area_error, '=')}"
         )
     drift = float(np.max(np.abs(sol.load_all[-1] / sol.problem.p_bar - 1.0)))
     if sol.info.get("error_estimate") is None:
@@ -29,6 +30,20 @@ def summary_line(sol) -> str:
     return (
         f"{head}, L1~{float(np.max(e['L1'][-1])):.3e}, |dA*|~{dA:.3e} ({rel:.2e} relative) "
         f"(estimate: |result - half-resolution result|; no closed form), load drift={drift:.3e}{plastic}"
+        f"{_worst_station(sol, e['L1'], e['contact_area'], '~')}"
+    )
+
+
+def _worst_station(sol, L1, dA, sign) -> str:
+    """ ", worst station zeta = z: L1 .., |dA*| .." where an earlier station's L1 exceeds the last one's (the
+    accuracy stated for the last station does not hold there); "" otherwise."""
+    worst = np.max(np.asarray(L1), axis=-1)  # over loads, per station
+    i = int(np.argmax(worst))
+    if i == worst.size - 1 or not worst[i] > worst[-1]:
+        return ""
+    return (
+        f"; worst station zeta={sol.zeta[i]:.4g}: L1{sign}{worst[i]:.3e}, "
+        f"|dA*|{sign}{float(np.max(np.asarray(dA)[i])):.3e}"
     )
 
 

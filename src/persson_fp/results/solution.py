@@ -430,7 +430,9 @@ class Solution:
 
         Where a closed form exists the error is the true one from :meth:`compare`; otherwise (a moving yield wall,
         general coefficients) it is the solver's own estimate (:attr:`error_estimate`, marked "~" and
-        "estimate"), and the load drift is that of the result itself.
+        "estimate"), and the load drift is that of the result itself.  Where an earlier station's L1 is larger than
+        the last one's, the line ends with that worst station and its errors (the accuracy stated for the last
+        station does not hold at every station).
 
         Returns
         -------
