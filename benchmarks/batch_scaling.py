@@ -81,7 +81,13 @@ def main(argv=None):
             for method in METHODS:
                 row = {"method": method, "n_loads": n}
                 fns = [call_of(method, pr, 1)] + ([call_of(method, pr, None)] if method != "exact" else [])
-                ts, reps, res = timed(fns, repeats)
+                try:
+                    ts, reps, res = timed(fns, repeats)
+                except ValueError as err:  # refused at the default budget (memory / time estimate)
+                    row["refused"] = str(err).split(";")[0]
+                    rows.append(row)
+                    print(f"{method:6s} {n:6d} loads: refused ({row['refused']})", flush=True)
+                    continue
                 t1 = ts[0]
                 row.update(time_1_thread=t1, repeats=reps, us_per_load=t1 / n * 1e6)
                 if method != "exact":
@@ -107,6 +113,9 @@ def main(argv=None):
     write_csv(os.path.join(out, "batch_scaling.csv"), rows)
     body = []
     for r in rows:
+        if "refused" in r:
+            body.append([r["method"], r["n_loads"], "refused: " + r["refused"], "-", "-", "-", "-"])
+            continue
         body.append(
             [
                 r["method"],
@@ -121,7 +130,7 @@ def main(argv=None):
     lines = []
     big, mid = max(loads), (1000 if 1000 in loads else None)
     for method in METHODS:
-        by_n = {r["n_loads"]: r for r in rows if r["method"] == method}
+        by_n = {r["n_loads"]: r for r in rows if r["method"] == method and "refused" not in r}
         if mid and big in by_n and mid in by_n:
             g = by_n[big]["time_1_thread"] / by_n[mid]["time_1_thread"]
             lines.append(f"- {method}: {mid} -> {big} loads costs {g:.3g}x the time ({big / mid:g}x the loads)")
@@ -131,6 +140,9 @@ def main(argv=None):
             f"({'within' if worst <= MEMORY_LIMIT_MB else 'ABOVE'} {MEMORY_LIMIT_MB:g} MB)"
         )
     slow = [r for r in rows if "default_over_1_thread" in r and r["default_over_1_thread"] < 1.0]
+    refused = [f"{r['method']} {r['n_loads']}" for r in rows if "refused" in r]
+    if refused:
+        lines.append("- refused at the default max_memory / max_time: " + ", ".join(refused))
     lines.append(
         "- BLAS library default faster than one thread in "
         + (", ".join(f"{r['method']} {r['n_loads']} ({r['default_over_1_thread']:.2f})" for r in slow) or "no case")

@@ -304,7 +304,7 @@ def plot(rows, labels, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, len(FUDGES), figsize=(13, 5.2), sharey=True)
+    fig, axes = plt.subplots(1, len(FUDGES), figsize=(13, 6.2), sharey=True, layout="constrained")
     cmap = plt.get_cmap("tab20")
     for ax, fz in zip(np.atleast_1d(axes), FUDGES):
         pts = []
@@ -328,19 +328,44 @@ def plot(rows, labels, path):
             ax.loglog(f[:, 0], f[:, 1], "o", mfc="none", mec="k", ms=9, label="Pareto front")
         for thr in THRESHOLDS:
             ax.axhline(thr, color="grey", lw=0.5, ls=":")
-        ax.set_xlabel("median time of the pf.solve call [s] (dotted: py-pde's first call, with compile)")
         ax.set_title(f"reference problem, fudge = {fz}")
         ax.grid(True, which="major", alpha=0.3)
     np.atleast_1d(axes)[0].set_ylabel("L1 error of P0 at zeta_max")
-    np.atleast_1d(axes)[-1].legend(fontsize=7, loc="upper right")
-    fig.tight_layout()
+    for ax in np.atleast_1d(axes):
+        ax.set_xlabel("median time of the pf.solve call [s]")
+    fig.suptitle("time to accuracy, whole calls (dotted: py-pde's first call, with compile)", fontsize=11)
+    handles, names = [], []
+    for ax in np.atleast_1d(axes):  # one legend for both panels, below them: it hides no data
+        for h, n in zip(*ax.get_legend_handles_labels()):
+            if n not in names:
+                handles.append(h)
+                names.append(n)
+    fig.legend(handles, names, loc="outside lower center", ncol=6, fontsize=8)
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
 
+def replot(out):
+    """Redraw speed_accuracy.png from the speed_accuracy.csv in ``out`` (no timing)."""
+    import csv
+
+    with open(os.path.join(out, "speed_accuracy.csv"), newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    for r in rows:
+        for key in ("call_time", "L1", "compile_time", "first_call_time"):
+            r[key] = float(r[key]) if r.get(key) not in (None, "") else np.nan
+    labels = list(dict.fromkeys(r["label"] for r in rows))
+    plot(rows, labels, os.path.join(out, "speed_accuracy.png"))
+
+
 def main(argv=None):
-    args = parser(__doc__).parse_args(argv)
+    p = parser(__doc__)
+    p.add_argument("--replot", action="store_true", help="only redraw the figure from the CSV in the output folder")
+    args = p.parse_args(argv)
     out = outdir(args)
+    if args.replot:
+        replot(out)
+        return
     repeats = args.repeats or (3 if args.quick else 5)
     avail = pf.available_methods()
     print(machine())

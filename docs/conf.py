@@ -26,6 +26,7 @@ release = version = persson_fp.__version__
 extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.mathjax",
+    "sphinx-mathjax-offline",  # MathJax served from _static/mathjax: formulas render offline, no CDN
     "numpydoc",
     "myst_nb",
 ]

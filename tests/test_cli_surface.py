@@ -47,7 +47,7 @@ def test_surface_command_height_map(tmp_path, capsys):
     header, cols, data = _read_csv(tmp_path / "o" / "surface.csv")
     assert any("units:" in ln for ln in header) and any("source: height map" in ln for ln in header)
     # the CSV's numbers are the library's on the imported spectrum (12 printed digits)
-    psd = pf.psd_from_heightmap(h, 1.0).psd
+    psd = pf.psd_from_heightmap(h, 1.0, periodic=True).psd
     p = data[:, cols.index("p_bar")]
     ms = pf.MeanSeparation(psd, 1.0, "YP08")
     np.testing.assert_allclose(data[:, cols.index("u_YP08")], ms.mean_separation(p), rtol=1e-10)

@@ -73,7 +73,8 @@ def test_sweep_command_absolute_loads_and_workers(tmp_path):
     )
     assert rc == 0
     lines = out.read_text().splitlines()
-    assert lines[0].startswith("# persson-fp sweep table") and len(lines) == 3 + 2
+    assert lines[0].startswith("surface,") and len(lines) == 1 + 2  # plain CSV, the metadata in t.csv.json
+    assert (tmp_path / "t.csv.json").is_file()
 
 
 @pytest.mark.parametrize(

@@ -18,7 +18,7 @@ DOCS = ROOT / "docs"
 
 
 def test_docs_build_without_warnings(tmp_path):
-    for mod in ("sphinx", "numpydoc", "myst_nb", "furo"):
+    for mod in ("sphinx", "numpydoc", "myst_nb", "furo", "sphinx-mathjax-offline"):
         pytest.importorskip(mod)
     out = tmp_path / "html"
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT / "src"), os.environ.get("PYTHONPATH", "")])}
@@ -31,6 +31,10 @@ def test_docs_build_without_warnings(tmp_path):
     api = (out / "api.html").read_text(encoding="utf8")
     for name in ("persson_fp.solve", "persson_fp.exact", "persson_fp.ContactProblem", "persson_fp.Solution"):
         assert f'id="{name}"' in api, f"{name} missing from the API reference"
+    # MathJax is served with the site (formulas render offline), not loaded from a CDN
+    physics = (out / "physics.html").read_text(encoding="utf8")
+    assert "_static/mathjax/tex-chtml.js" in physics and "cdn.jsdelivr" not in physics
+    assert (out / "_static" / "mathjax" / "tex-chtml.js").is_file()
     notebooks = sorted(p.stem for p in (ROOT / "notebooks").glob("*.ipynb"))
     rendered = sorted(p.stem for p in (out / "notebooks").glob("*.html"))
     assert rendered == notebooks

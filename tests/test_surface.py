@@ -90,7 +90,7 @@ def test_convention_errors():
 def test_synthetic_height_map_recovers_rms_and_hurst(H, rng):
     psd = pf.SelfAffinePSD.from_rms_slope(0.1, H, 2 * np.pi, 8 * np.pi, 64 * np.pi)  # q_s = 32 dq
     h, rms_h, rms_s = synthetic_surface(psd, 256, 1.0, rng)
-    s = pf.psd_from_heightmap(h, 1.0)
+    s = pf.psd_from_heightmap(h, 1.0, periodic=True)
     assert s.rms_height_data == pytest.approx(rms_h, rel=1e-10)  # the map is what it was built to be
     assert s.rms_slope_data == pytest.approx(rms_s, rel=1e-10)
     # annulus means vs lattice sums: measured -0.4 / -0.85 % (height, H = 0.3 / 0.8), slope within 0.05 %
@@ -98,8 +98,9 @@ def test_synthetic_height_map_recovers_rms_and_hurst(H, rng):
     assert s.psd.rms_slope == pytest.approx(rms_s, rel=0.01)
     # the continuum spectrum it came from (lattice sums vs integrals differ by < 1 % at 32 modes per side)
     assert s.psd.rms_slope == pytest.approx(psd.rms_slope, rel=0.01)
-    # H from a fit of the recovered tail (deterministic amplitudes: no sampling scatter)
-    qq = np.geomspace(10 * np.pi, 50 * np.pi, 20)
+    # H from a fit of the recovered tail (deterministic amplitudes: no sampling scatter), above the first annuli
+    # (one lattice step wide, up to 6 dq), whose exponents carry their few lattice radii's slope power instead
+    qq = np.geomspace(14 * np.pi, 50 * np.pi, 20)
     slope = np.polyfit(np.log(qq), np.log(s.psd.C(qq)), 1)[0]
     assert -slope / 2 - 1 == pytest.approx(H, abs=0.02)
 
@@ -115,7 +116,7 @@ def test_bem_surface_import_matches_psd_params(seed):
     h = np.real(np.fft.ifft2(A) * N * N)
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # the import's own <= 1 % check must not fire
-        s = pf.psd_from_heightmap(h, 1.0)
+        s = pf.psd_from_heightmap(h, 1.0, periodic=True)
     params = np.genfromtxt(os.path.join(DATA, "psd_params.csv"), delimiter=",", names=True)
     row = params[(params["H_nominal"] == 0.8) & (params["seed"] == seed)][0]
     eh, es = s.rms_errors
@@ -126,16 +127,26 @@ def test_bem_surface_import_matches_psd_params(seed):
     assert float(s.psd.V()) == pytest.approx(0.0025, rel=0.02)
 
 
-def test_non_periodic_map_is_windowed_and_warns_when_rms_is_off(rng):
+def test_non_periodic_map_is_windowed_and_carries_the_crops_moments(rng):
     psd = pf.SelfAffinePSD.from_rms_slope(0.1, 0.8, 2 * np.pi, 8 * np.pi, 64 * np.pi)
     h, _, _ = synthetic_surface(psd, 128, 1.0, rng)
     x = np.linspace(0, 1, 128)
     tilted = h + 0.05 * x[:, None]  # a tilt that detrending must remove
-    with pytest.warns(UserWarning, match="differ from the height data"):  # measured +8 % on this 100^2 crop
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the import's own 1 % check must not fire
         s = pf.psd_from_heightmap(tilted[:100, :100], 100 / 128, periodic=False)
-    assert any("hann" in n for n in s.notes) and any("plane" in n for n in s.notes)
-    # windowing a small non-periodic crop: rms slope within 10 % of the data's (finite differences)
-    assert s.psd.rms_slope == pytest.approx(s.rms_slope_data, rel=0.1)
+    assert any("tukey" in n for n in s.notes) and any("plane" in n for n in s.notes)
+    assert any("scaled by" in n for n in s.notes)  # the window's levels, set by the crop's two moments
+    # the crop's own moments, computed here: detrended rms height, central-difference rms slope
+    crop = tilted[:100, :100]
+    X = np.stack([np.ones(10000), *[g.ravel() for g in np.meshgrid(np.arange(100), np.arange(100), indexing="ij")]], 1)
+    d = crop.ravel() - X @ np.linalg.lstsq(X, crop.ravel(), rcond=None)[0]
+    gx, gy = np.gradient(d.reshape(100, 100), 1 / 128)
+    assert s.psd.rms_height == pytest.approx(np.sqrt(np.mean(d * d)), rel=1e-6)
+    assert s.slope_definition == "central differences"
+    # the spectrum under the same differences (J0 kernel vs the modes' own sin^2: measured 0.1 %)
+    assert s.rms_slope_spectrum == pytest.approx(np.sqrt(np.mean(gx**2 + gy**2)), rel=0.01)
+    assert "central differences on both sides" in s.describe()
 
 
 def test_height_map_errors():
@@ -149,6 +160,10 @@ def test_height_map_errors():
         pf.psd_from_heightmap(np.random.default_rng(0).random((16, 16)), 1.0, bins_per_decade=2)
     with pytest.raises(ValueError, match="window"):
         pf.psd_from_heightmap(np.random.default_rng(0).random((16, 16)), 1.0, window="kaiser")
+    with pytest.raises(ValueError, match="periodic must be True or False"):  # "False" is not taken as true
+        pf.psd_from_heightmap(np.random.default_rng(0).random((16, 16)), 1.0, periodic="False")
+    with pytest.raises(ValueError, match="periodic must be True or False"):
+        pf.psd_from_profiles(np.random.default_rng(0).random(64), 1.0, periodic="yes")
 
 
 def test_read_heightmap_text_and_npy(tmp_path, rng):

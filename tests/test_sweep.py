@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import sys
 import types
 import warnings
@@ -309,6 +310,11 @@ def test_csv_and_parquet_round_trip_keep_values_and_metadata(tmp_path):
     np.testing.assert_array_equal(df["value"].to_numpy(), ref["value"].to_numpy())  # repr() floats round-trip
     assert df.attrs["units"] == {"contact_area": "1", "variance": "pressure^2"}
     assert df.attrs["method"] == "exact" and df.attrs["version"] == pf.__version__
+    import pandas as pd
+
+    plain = pd.read_csv(tmp_path / "t.csv")  # the ecosystem's default reader: the same columns and values
+    assert list(plain.columns) == list(ref.columns)
+    np.testing.assert_array_equal(plain["value"].to_numpy(), ref["value"].to_numpy())
     pytest.importorskip("pyarrow")
     res.to_parquet(tmp_path / "t.parquet")
     dp = pf.read_sweep_table(tmp_path / "t.parquet")
@@ -340,8 +346,9 @@ def test_without_pandas_the_table_is_a_dict_of_arrays(monkeypatch, tmp_path):
         res.to_pandas()
     res.to_csv(tmp_path / "t.csv")  # the CSV writer needs no pandas
     lines = (tmp_path / "t.csv").read_text().splitlines()
-    assert lines[0].startswith("# persson-fp sweep table") and len(lines) == 3 + 3 * LOADS.size
-    last = dict(zip(lines[2].split(","), lines[-1].split(",")))
+    assert lines[0].startswith("surface,") and len(lines) == 1 + 3 * LOADS.size  # plain CSV: a header, the rows
+    assert json.loads((tmp_path / "t.csv.json").read_text())["method"] == "exact"  # the metadata next to it
+    last = dict(zip(lines[0].split(","), lines[-1].split(",")))
     assert float(last["value"]) == res["contact_area"][2, 0, -1]  # repr() of a float reads back exactly
 
 

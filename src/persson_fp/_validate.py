@@ -13,6 +13,7 @@ __all__ = [
     "as_positive_scalar",
     "as_float_array",
     "check_in_range",
+    "as_file_path",
 ]
 
 
@@ -82,3 +83,21 @@ def check_in_range(a, name: str, lo: float, hi: float, *, rtol: float = 1e-12) -
         bad = a[(a < lo - slack_lo) | (a > hi + slack_hi)].ravel()[0]
         raise ValueError(f"{name} must lie in [{lo:.17g}, {hi:.17g}], got {float(bad)!r}")
     return np.clip(a, lo, hi)
+
+
+def as_file_path(path, name: str = "path") -> str:
+    """``path`` as the name of an existing regular file (str); a ValueError otherwise.
+
+    An int is refused rather than taken as a file descriptor (``open`` would then close the caller's file), and
+    a folder is named as such.
+    """
+    import os
+
+    if isinstance(path, (bool, int, np.integer)) or not isinstance(path, (str, bytes, os.PathLike)):
+        raise ValueError(f"{name} must be a file name (str or path-like), got {type(path).__name__} {path!r}")
+    path = os.fsdecode(os.fspath(path))
+    if os.path.isdir(path):
+        raise ValueError(f"{name}: {path!r} is a folder, expected a file")
+    if not os.path.exists(path):
+        raise ValueError(f"no such file {path!r}")
+    return path

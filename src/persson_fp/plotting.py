@@ -80,6 +80,9 @@ def plot_exact_pdfs(problem: ContactProblem, zetas: ArrayLike, ax: Axes | None =
 def plot_solution(sol: Solution, ax: Axes | None = None, stations: Sequence[int] | None = None) -> Figure:
     """Numerical P0 (markers) against the exact solution (lines) at the stations of ``sol``.
 
+    Without a closed form (a moving yield wall, general coefficients) the numerical P0 is drawn alone (lines with
+    markers) and the title gives the solver's error estimate instead of the error.
+
     Parameters
     ----------
     sol : Solution
@@ -94,19 +97,41 @@ def plot_solution(sol: Solution, ax: Axes | None = None, stations: Sequence[int]
     matplotlib.figure.Figure
         The figure drawn on.
     """
+    from matplotlib.lines import Line2D
+
     fig, ax = _axes(ax)
     scale = float(np.sqrt(sol.problem.V()))
-    ref = sol.exact_on_grid()
+    closed = sol.problem.has_closed_form
+    ref = sol.exact_on_grid() if closed else None
     idx = range(sol.zeta.size) if stations is None else stations
-    step = max(1, sol.p.size // 60)
+    p = np.asarray(sol.p) if np.ndim(sol.p) == 1 else np.asarray(sol.p)[0]  # a grid per load: the first one's
+    step = max(1, p.size // 60)
     for i in idx:
-        (line,) = ax.plot(sol.p / scale, ref[i, 0] * scale, lw=1.2, label=f"exact, ζ = {sol.zeta[i]:.4g}")
-        ax.plot(sol.p[::step] / scale, sol.P0_all[i, 0, ::step] * scale, "o", ms=3, color=line.get_color(), mfc="none")
-    err = sol.compare().final()
-    ax.set_title(f"{sol.method}: L1 = {err['L1']:.2e}, |ΔA*| = {err['area_error']:.2e}, {sol.wall_time * 1e3:.1f} ms")
+        label = f"ζ = {sol.zeta[i]:.4g}"
+        if closed:
+            (line,) = ax.plot(p / scale, ref[i, 0] * scale, lw=1.2, label=label)
+            ax.plot(p[::step] / scale, sol.P0_all[i, 0, ::step] * scale, "o", ms=3, color=line.get_color(), mfc="none")
+        else:
+            (line,) = ax.plot(p / scale, sol.P0_all[i, 0] * scale, lw=0.8, label=label)
+            ax.plot(p[::step] / scale, sol.P0_all[i, 0, ::step] * scale, "o", ms=3, color=line.get_color(), mfc="none")
+    handles, _ = ax.get_legend_handles_labels()
+    key = [Line2D([], [], color="0.3", marker="o", ls="none", mfc="none", ms=4, label=f"{sol.method} (markers)")]
+    if closed:
+        key.append(Line2D([], [], color="0.3", lw=1.2, label="exact (lines)"))
+        err = sol.compare().final()
+        title = f"{sol.method}: L1 = {err['L1']:.2e}, |ΔA*| = {err['area_error']:.2e}, {sol.wall_time * 1e3:.1f} ms"
+    elif sol.info.get("error_estimate") is not None:
+        e = sol.error_estimate
+        title = (
+            f"{sol.method} (no closed form): L1 ≈ {float(np.max(e['L1'][-1])):.2e}, |ΔA*| ≈ "
+            f"{float(np.max(e['contact_area'][-1])):.2e} (estimates), {sol.wall_time * 1e3:.1f} ms"
+        )
+    else:
+        title = f"{sol.method} (no closed form, no error estimate), {sol.wall_time * 1e3:.1f} ms"
+    ax.set_title(title, fontsize=10)
     ax.set_xlabel(r"$p/\sqrt{V(\zeta_{max})}$")
     ax.set_ylabel(r"$P_0\,\sqrt{V(\zeta_{max})}$")
-    ax.legend(fontsize=8)
+    ax.legend(handles=handles + key, fontsize=8)
     return fig
 
 
@@ -122,7 +147,7 @@ def plot_area_curve(ratio: ArrayLike, curves: Mapping, ax: Axes | None = None, a
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; default a new figure.
     asymptote : bool
-        Also draw the small-load asymptote sqrt(2/pi) p_bar/sqrt(V) (``eq:Asymptote_1``).
+        Also draw the small-load asymptote sqrt(2/pi) p_bar/sqrt(V) (``eq:Asymptote_1``), where it is below 1.
 
     Returns
     -------
@@ -134,7 +159,9 @@ def plot_area_curve(ratio: ArrayLike, curves: Mapping, ax: Axes | None = None, a
         ax.plot(ratio, A, label=label)
     if asymptote:
         label = r"small-load asymptote $\sqrt{2/\pi}\,\bar p/\sqrt{V}$"
-        ax.plot(ratio, np.minimum(np.sqrt(2 / np.pi) * ratio, 1.0), "k:", lw=0.8, label=label)
+        small = np.sqrt(2 / np.pi) * np.asarray(ratio, dtype=float)
+        # drawn only where it is below 1 (a straight line ending at A* = 1), not clipped onto a plateau at 1
+        ax.plot(ratio, np.where(small <= 1.0, small, np.nan), "k:", lw=0.8, label=label)
     ax.set_xscale("log")
     ax.set_xlabel(r"$\bar p/\sqrt{V}$")
     ax.set_ylabel(r"$A^*$")

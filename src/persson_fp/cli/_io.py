@@ -7,10 +7,13 @@ line, exit code 2).
 
 from __future__ import annotations
 
+import argparse
 import contextlib
 import os
 import sys
 import tempfile
+
+import numpy as np
 
 __all__ = ["CLIError"]
 
@@ -36,11 +39,28 @@ def _atomic_open(path, mode="w", newline=None):
         except OSError as err:
             raise CLIError(f"{path}: {err.strerror or err}") from None
         return
+    with _atomic_path(path) as tmp, open(tmp, mode, newline=newline) as fh:
+        yield fh
+
+
+def _default_mode() -> int:
+    """The mode a new file gets from ``open``: 0o666 less the umask (mkstemp's files are 0o600)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+@contextlib.contextmanager
+def _atomic_path(path):
+    """A temporary name in the folder of ``path`` (same suffix) to write to; renamed to ``path`` on success with the
+    umask's default mode, removed on failure or interruption (so no partial file is left)."""
+    path = os.fspath(path)
     folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".persson-fp-", suffix=".part")
+    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".persson-fp-", suffix=".part" + os.path.splitext(path)[1])
+    os.close(fd)
     try:
-        with os.fdopen(fd, mode, newline=newline) as fh:
-            yield fh
+        yield tmp
+        os.chmod(tmp, _default_mode())
         os.replace(tmp, path)
     except BaseException:
         with contextlib.suppress(OSError):
@@ -82,3 +102,18 @@ def _note_replaced(folder, names):
     old = [n for n in names if os.path.isfile(os.path.join(folder, n))]
     if old:
         print(f"note: replacing existing {', '.join(old)} in {folder}", file=sys.stderr)
+
+
+def _count(text: str) -> int:
+    """An integer argument; "1e6" is read as 1000000 (an integral number in any float notation)."""
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+    if not (np.isfinite(x) and x == np.floor(x) and abs(x) < 2**63):
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}")
+    return int(x)

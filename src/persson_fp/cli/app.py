@@ -19,7 +19,15 @@ import time
 import numpy as np
 
 from persson_fp._version import __version__
-from persson_fp.cli._io import CLIError, _atomic_open, _check_new_file, _make_parent, _note_replaced, _save_figure
+from persson_fp.cli._io import (
+    CLIError,
+    _atomic_open,
+    _check_new_file,
+    _count,
+    _make_parent,
+    _note_replaced,
+    _save_figure,
+)
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.energy import elastic_energy
 from persson_fp.results.exact import exact
@@ -70,6 +78,10 @@ MAX_LOADS = 1_000_000
 
 SURFACE_DEFAULTS = {"H": 0.8, "q_l": 1.0, "zeta_max": 128.0}
 """Defaults of the self-affine surface options (None in argparse, so that a given one can be told apart)."""
+
+
+MIN_TOL = 1e-12
+"""Smallest ``solve --tol``: below it the grids the methods would need exceed any machine."""
 
 
 def _progress(i, n, label, stream=sys.stderr):
@@ -241,6 +253,11 @@ def cmd_solve(args) -> int:
     _check_new_file(args.plot, args.force, "--plot")
     if args.seed is not None and args.method != "monte-carlo":
         raise CLIError("--seed: only used with --method monte-carlo")
+    for flag, v in (("--tol", args.tol), ("--rtol", args.rtol), ("--atol", args.atol)):
+        if v is not None and not (np.isfinite(v) and v > 0):
+            raise CLIError(f"{flag} must be a finite number > 0, got {v!r}")
+    if args.tol is not None and not MIN_TOL <= args.tol <= 0.1:
+        raise CLIError(f"--tol must lie in [{MIN_TOL:g}, 0.1] (accuracy of the contact area), got {args.tol!r}")
     pr = _problem(args)
     if args.hardness is not None:  # elastoplastic contact: a constant or power-law yield stress
         n = args.hardness_exponent
@@ -266,9 +283,7 @@ def cmd_solve(args) -> int:
                 f"{1 - sol.contact_area_all[-1, j]:12.8f} {est['contact_area'][-1, j]:10.2e} "
                 f"{sol.load_all[-1, j] / pb - 1:13.2e}"
             )
-        if args.output or args.plot:
-            raise CLIError("--output/--plot: not available for a scale-dependent hardness yet (use the Python API)")
-        return 0
+        return _write_solution(args, sol, pr)
     cmp_ = sol.compare()
     if pr.hardness is not None:
         print("elastoplastic: A_pl (num) " + " ".join(f"{v:.8f}" for v in sol.plastic_area_all[-1]))
@@ -285,6 +300,11 @@ def cmd_solve(args) -> int:
             f"{np.reshape(sol.variance, (sol.zeta.size, -1))[-1, j]:12.5e} "
             f"{sol.load_all[-1, j] / pb - 1:13.2e} {cmp_.L1[-1, j]:10.2e}"
         )
+    return _write_solution(args, sol, pr)
+
+
+def _write_solution(args, sol, pr) -> int:
+    """Write ``--output`` (P0 at zeta_max, CSV or JSON) and ``--plot`` (:meth:`Solution.plot`)."""
     if args.output:
         path = args.output
         _make_parent(path, "--output")
@@ -303,9 +323,16 @@ def cmd_solve(args) -> int:
         else:
             with _atomic_open(path, "w", newline="") as fh:
                 w = csv.writer(fh)
-                w.writerow(["p"] + [f"P0(p_bar={pb:.6g})" for pb in pr.p_bar])
-                for i, p in enumerate(sol.p):
-                    w.writerow([f"{p:.12g}"] + [f"{v:.12g}" for v in sol.P0_all[-1, :, i]])
+                if np.ndim(sol.p) == 1:
+                    w.writerow(["p"] + [f"P0(p_bar={pb:.6g})" for pb in pr.p_bar])
+                    for i, p in enumerate(sol.p):
+                        w.writerow([f"{p:.12g}"] + [f"{v:.12g}" for v in sol.P0_all[-1, :, i]])
+                else:  # a grid per load (a moving yield wall): p and P0 columns for each load
+                    w.writerow([f"{c}(p_bar={pb:.6g})" for pb in pr.p_bar for c in ("p", "P0")])
+                    for i in range(np.shape(sol.p)[-1]):
+                        w.writerow(
+                            [f"{v:.12g}" for j in range(pr.n_loads) for v in (sol.p[j, i], sol.P0_all[-1, j, i])]
+                        )
         print(f"P0 at zeta_max written to {path}")
     if args.plot:
         _make_parent(args.plot, "--plot")
@@ -355,21 +382,6 @@ def cmd_area(args) -> int:
     )
     print(f"written {path} and contact_area.png")
     return 0
-
-
-def _count(text: str) -> int:
-    """An integer argument; "1e6" is read as 1000000 (an integral number in any float notation)."""
-    try:
-        return int(text)
-    except ValueError:
-        pass
-    try:
-        x = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
-    if not (np.isfinite(x) and x == np.floor(x) and abs(x) < 2**63):
-        raise argparse.ArgumentTypeError(f"not an integer: {text!r}")
-    return int(x)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -458,12 +470,25 @@ def main(argv=None) -> int:
         SolverError,
         OSError,
         MemoryError,
+        EOFError,
+        OverflowError,
     ) as err:
         print(f"persson-fp {argv[0] if argv else 'report'}: error: {_one_line(err)}", file=sys.stderr)
         return 2
 
 
-_USER_ERRORS = (CLIError, ValueError, TypeError, ImportError, NotImplementedError, SolverError, OSError, MemoryError)
+_USER_ERRORS = (
+    CLIError,
+    ValueError,
+    TypeError,
+    ImportError,
+    NotImplementedError,
+    SolverError,
+    OSError,
+    MemoryError,
+    EOFError,
+    OverflowError,
+)
 """Errors reported as one line (a solver's refusal, a breached invariant, a file that cannot be read or written)."""
 
 

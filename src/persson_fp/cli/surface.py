@@ -16,7 +16,12 @@ import time
 
 import numpy as np
 
+from persson_fp.cli._io import _atomic_open, _count, _make_parent, _note_replaced, _save_figure
+
 FUDGES = ["none", "YP08", "WM17", "Xu24"]
+
+MAX_LOADS = 100_000
+"""Largest ``surface --n-loads`` (four models, each load a quadrature of ~400 nodes: ~5 s at the cap)."""
 
 
 def add_parser(sub):
@@ -29,7 +34,9 @@ def add_parser(sub):
     s.add_argument("--E-star", type=float, default=1.0, help="plane-strain modulus E/(1-nu^2), pressure (default 1)")
     s.add_argument("--ratio-min", type=float, default=1e-3, help="smallest p_bar/sqrt(V) (default 1e-3)")
     s.add_argument("--ratio-max", type=float, default=3.0, help="largest p_bar/sqrt(V) (default 3)")
-    s.add_argument("--n-loads", type=int, default=60, help="number of loads, log-spaced (default 60)")
+    s.add_argument(
+        "--n-loads", type=_count, default=60, help=f"number of loads, log-spaced (default 60, at most {MAX_LOADS})"
+    )
     s.add_argument(
         "--weighting",
         default="yang-persson",
@@ -48,11 +55,10 @@ def add_parser(sub):
 
 
 def _read(args):
+    from persson_fp._validate import as_file_path
     from persson_fp.surfaces.readers import read_contact_engineering_csv, read_heightmap
 
-    path = args.file
-    if not os.path.exists(path):
-        raise ValueError(f"no such file {path!r}")
+    path = as_file_path(args.file, "file")
     with open(path, "rb") as fh:
         head = fh.read(4096)
     if not path.endswith(".npy") and b"Data series" in head and b";" in head:
@@ -72,8 +78,8 @@ def cmd_surface(args) -> int:
 
     if not (0 < args.ratio_min < args.ratio_max) or not np.isfinite(args.ratio_max):
         raise ValueError("--ratio-min and --ratio-max must satisfy 0 < min < max (finite)")
-    if args.n_loads < 2:
-        raise ValueError("--n-loads must be >= 2")
+    if not 2 <= args.n_loads <= MAX_LOADS:
+        raise ValueError(f"--n-loads must lie in [2, {MAX_LOADS}], got {args.n_loads}")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         surf = _read(args)
@@ -109,9 +115,10 @@ def cmd_surface(args) -> int:
         print(f"{name:<6} {law[name][0]:13.6e} {law[name][1]:11.5g}")
     print(f"{args.n_loads} loads x {len(FUDGES)} models in {wall * 1e3:.1f} ms")
     out = args.output
-    os.makedirs(out, exist_ok=True)
+    _make_parent(os.path.join(out, "surface.csv"), "--output")
+    _note_replaced(out, ["surface.csv", "surface.png"])
     path = os.path.join(out, "surface.csv")
-    with open(path, "w", newline="") as fh:
+    with _atomic_open(path, "w", newline="") as fh:
         for line in desc.splitlines():
             fh.write(f"# {line}\n")
         fh.write(
@@ -133,8 +140,7 @@ def cmd_surface(args) -> int:
             vals += [K[n][j] for n in FUDGES]
             vals += [d[n][j] for d in (gaps, Q_cj, Q_em, C) for n in FUDGES]
             fh.write(",".join(f"{v:.12g}" for v in vals) + "\n")
-    fig = _figure(psd, ratio, p_bar, A, u, K, surf.source)
-    fig.savefig(os.path.join(out, "surface.png"), dpi=110)
+    _save_figure(_figure(psd, ratio, p_bar, A, u, K, surf.source), os.path.join(out, "surface.png"), dpi=110)
     print(f"written {path} and surface.png")
     return 0
 

@@ -15,6 +15,30 @@ import warnings
 
 import numpy as np
 
+from persson_fp.cli._io import _check_new_file, _make_parent
+
+
+def _write_table(res, out):
+    """Write the table (and a CSV's metadata file) under temporary names, renamed when complete: an interrupted
+    sweep leaves no partial table and an existing one untouched."""
+    import contextlib
+
+    from persson_fp.cli._io import _atomic_path
+    from persson_fp.sweeps.table import metadata_path
+
+    if not out.endswith(".csv"):
+        with _atomic_path(out) as tmp:
+            res.to_parquet(tmp)
+        return
+    with _atomic_path(out) as tmp, _atomic_path(metadata_path(out)) as tmp_meta:
+        try:
+            res.to_csv(tmp)
+            os.replace(metadata_path(tmp), tmp_meta)
+        finally:
+            with contextlib.suppress(OSError):
+                os.unlink(metadata_path(tmp))
+
+
 HELP = "surfaces (CSV spectra, folders of them) x fudge models x loads into one table (CSV or Parquet)"
 
 EPILOG = """\
@@ -56,7 +80,12 @@ def add_parser(sub) -> argparse.ArgumentParser:
     sw.add_argument("--method", default="exact", help="exact (default) or a solver: fv, mol, sines, ...")
     sw.add_argument("--E-star", type=float, default=1.0, help="plane-strain modulus E* (default 1)")
     sw.add_argument("--workers", type=int, default=1, help="processes (default 1: serial)")
-    sw.add_argument("--output", default="sweep.csv", help="table path, .csv or .parquet (default sweep.csv)")
+    sw.add_argument(
+        "--output",
+        default="sweep.csv",
+        help="table path, .csv (metadata in <output>.json) or .parquet (default sweep.csv)",
+    )
+    sw.add_argument("--force", action="store_true", help="replace an existing --output table")
     sw.add_argument("--no-progress", action="store_true", help="no progress bar")
     sw.set_defaults(func=cmd_sweep)
     return sw
@@ -79,6 +108,8 @@ def cmd_sweep(args) -> int:
     out = args.output
     if not out.endswith((".csv", ".parquet", ".pq")):
         raise ValueError(f"--output must end in .csv or .parquet, got {out!r}")
+    _check_new_file(out, args.force, "--output")
+    _make_parent(out, "--output")
     reader = functools.partial(TabulatedPSD.from_csv, q_column=args.q_column, C_column=args.C_column)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SweepWarning)  # failures are printed below
@@ -95,12 +126,7 @@ def cmd_sweep(args) -> int:
             surface_reader=reader,
             surface_pattern=args.pattern,
         )
-    d = os.path.dirname(os.path.abspath(out))
-    os.makedirs(d, exist_ok=True)
-    if out.endswith(".csv"):
-        res.to_csv(out)
-    else:
-        res.to_parquet(out)
+    _write_table(res, out)
     n_s, n_m, n_l = res.shape
     wall = res.metadata["wall_time_s"]
     print(

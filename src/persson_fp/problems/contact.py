@@ -49,6 +49,23 @@ def _check_loads(p_bar) -> np.ndarray:
     return pb
 
 
+def _warn_unit_slip(p_bar, E_star, V_max):
+    """Warn when a load exceeds the contact modulus (p_bar / E_star > 1) deep in full contact (p_bar / sqrt(V) > 6,
+    A* = 1 - 2e-9): usually E* and p_bar in other units (a steep test surface reaches p_bar > E* before that)."""
+    ratio = float(np.max(p_bar)) / E_star
+    if ratio > 1.0 and float(np.max(p_bar)) > 6.0 * V_max**0.5:
+        import warnings
+
+        warnings.warn(
+            f"p_bar / E_star = {ratio:.3g} > 1 and p_bar / sqrt(V(zeta_max)) = {float(np.max(p_bar)) / V_max**0.5:.3g} "
+            "(V = E_star^2 <|grad h|^2> / 4): the nominal pressure exceeds the contact modulus, where small-slope "
+            "contact has p_bar << E_star and full contact already near p_bar = 3 sqrt(V); are p_bar and E_star in the "
+            "same unit (e.g. E_star in GPa with p_bar in Pa)?",
+            UserWarning,
+            stacklevel=3,
+        )
+
+
 class ContactProblem:
     """Persson's diffusion problem for one surface, one modulus and one or many loads.
 
@@ -124,6 +141,7 @@ class ContactProblem:
                 "range (V = E_star^2 <|grad h|^2> / 4, eq:VV_relation); rescale the pressure or length unit"
             )
         self._tau_max = None  # (n_loads,), on first use
+        _warn_unit_slip(self.p_bar, self.E_star, self._V_max)
         self._frozen = True
 
     # -- construction helpers ---------------------------------------------------

@@ -336,6 +336,10 @@ class ExactSolution:
         return html_table("persson-fp ExactSolution (closed form)", rows)
 
 
+FULL_CONTACT = 6.0
+"""``pf.exact`` warns when every load has p_bar / sqrt(V(zeta_max)) above this (A* > 1 - 2e-9 without a fudge)."""
+
+
 def exact(problem: ContactProblem, zeta: ArrayLike | None = None) -> ExactSolution:
     """The exact solution of ``problem`` at magnification(s) ``zeta``.
 
@@ -361,4 +365,17 @@ def exact(problem: ContactProblem, zeta: ArrayLike | None = None) -> ExactSoluti
         ``problem`` not a :class:`ContactProblem` or without a closed form; ``zeta`` not finite, of more
         than one dimension or outside [1, zeta_max].
     """
+    if isinstance(problem, ContactProblem) and problem.V_max > 0:
+        x = float(np.min(problem.p_bar)) / math.sqrt(problem.V_max)
+        if x >= FULL_CONTACT:
+            import warnings
+
+            warnings.warn(
+                f"full contact at every load: p_bar / sqrt(V) >= {x:.3g} (V = V(zeta_max) = E*^2 <|grad h|^2> / 4 = "
+                f"{problem.V_max:.3g}), so A* = 1; likely p_bar and E_star in different units (p_bar / E_star = "
+                f"{float(np.min(problem.p_bar)) / problem.E_star:.3g}) or a spectrum without its short wavelengths "
+                f"(rms slope {math.sqrt(4 * problem.V_max) / problem.E_star:.3g})",
+                UserWarning,
+                stacklevel=2,
+            )
     return ExactSolution(problem, zeta)

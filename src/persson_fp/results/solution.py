@@ -428,28 +428,28 @@ class Solution:
     def summary(self) -> str:
         """One line: method, grid, steps, wall time and the error made at the last station.
 
+        Where a closed form exists the error is the true one from :meth:`compare`; otherwise (a moving yield wall,
+        general coefficients) it is the solver's own estimate (:attr:`error_estimate`, marked "~" and
+        "estimate"), and the load drift is that of the result itself.  Where an earlier station's L1 is larger than
+        the last one's, the line ends with that worst station and its errors (the accuracy stated for the last
+        station does not hold at every station).
+
         Returns
         -------
         str
             The method, ``n_p``, steps, wall time (ms), L1 error, ``|dA*|`` (absolute and relative) and load
-            drift from :meth:`compare`.
-
-        Raises
-        ------
-        ValueError
-            The problem has no closed form to compare with (see :meth:`compare`).
+            drift (the worst over the loads); with a hardness, A_pl.
         """
-        c = self.compare().final()
-        return (
-            f"{self.method}: n_p={self.p.size}, steps={self.info.get('steps')}, wall={self.wall_time * 1e3:.2f} ms, "
-            f"L1={c['L1']:.3e}, |dA*|={c['area_error']:.3e} ({c['area_error_rel']:.2e} relative), "
-            f"load drift={c['load_drift']:.3e}"
-        )
+        from persson_fp.results.display import summary_line
+
+        return summary_line(self)
 
     def plot(self, ax: Axes | None = None, **kwargs: Any) -> Figure:
-        """P0 against the exact solution at every station (needs matplotlib).
+        """P0 at every station, against the exact solution where there is one (needs matplotlib).
 
-        Draws :func:`persson_fp.plotting.plot_solution` (its first load), in units of sqrt(V(zeta_max)).
+        Draws :func:`persson_fp.plotting.plot_solution` (its first load), in units of sqrt(V(zeta_max)); without a
+        closed form (a moving yield wall, general coefficients) the numerical P0 alone, with the solver's error
+        estimate in the title.
 
         Parameters
         ----------
@@ -470,6 +470,7 @@ class Solution:
     # -- display (compact: never the arrays) -----------------------------------------------------------------
     def _summary_rows(self) -> list:
         from persson_fp._display import span
+        from persson_fp.results.display import error_label
 
         z = self.zeta
         return [
@@ -477,9 +478,10 @@ class Solution:
             ("fudge", "fudge", repr(self.problem.fudge.name)),
             ("p_bar", "p_bar (pressure)", span(self.problem.p_bar)),
             ("zeta", "zeta (stations)", span(z)),
-            ("n_p", f"grid ({self.kind})", self.p.size),
+            ("n_p", f"grid ({self.kind})", np.shape(self.p)[-1]),
             ("steps", "steps", self.info.get("steps")),
             ("A", f"A* at zeta = {z[-1]:.4g}", span(self.contact_area_all[-1])),
+            ("error", "error of A* (at the last station)", error_label(self)),
             ("wall_time", "wall time", f"{self.wall_time * 1e3:.3g} ms"),
             ("warnings", "warnings", len(self.info.get("warnings", []))),
         ]

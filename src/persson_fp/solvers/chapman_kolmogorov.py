@@ -166,6 +166,8 @@ class ChapmanKolmogorovSolver(Solver):
     variance_correction : bool, default True
         Apply the cell-exact kernel with ``dtau - h^2/6`` (fourth-order in h);
         ``False`` gives the plain cell-exact scheme (second order, any step size).
+    tol : None
+        Not supported: the accuracy is set by ``n_p`` and ``n_steps`` (a ``ValueError`` says so).
 
     ``info`` holds ``edges``, ``grid`` (n_p, p_max, h), ``steps``, ``matrix``
     (its shape and how it is applied), ``tau`` (the numerical effective
@@ -182,10 +184,17 @@ class ChapmanKolmogorovSolver(Solver):
         "zeta0": None,
         "tau0_fraction": 0.01,
         "variance_correction": True,
+        "tol": None,
     }
 
     def validate(self) -> None:
         o = self.opts
+        if o["tol"] is not None:
+            raise ValueError(
+                f"chapman-kolmogorov has no tolerance control (tol = {o['tol']!r}): its accuracy is set by n_p and "
+                "n_steps (double them to see how far the result moves); set those, or use method='auto' (or 'fv' / "
+                "'mol') with tol"
+            )
         o["n_p"] = check_int(o["n_p"], "n_p", 8, 200_000)
         o["n_steps"] = check_int(o["n_steps"], "n_steps", 1)
         o["k_domain"] = check_float(o["k_domain"], "k_domain", 3.0, 100.0, lo_open=False)

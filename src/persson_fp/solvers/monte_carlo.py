@@ -109,6 +109,8 @@ class MonteCarloSolver(Solver):
         it); the same seed, ``n_walkers``, ``chunk_size`` and ``n_steps`` give
         the same result.  ``info["seed_entropy"]`` records the entropy used
         when an int or None was given.
+    tol : None
+        Not supported: the error is statistical (a ``ValueError`` says so; set ``n_walkers``).
     bridge : bool, default True
         Brownian-bridge crossing correction (False: plain absorption, biased).
     chunk_size : int, default 2**20
@@ -129,6 +131,7 @@ class MonteCarloSolver(Solver):
         "seed": None,
         "bridge": True,
         "chunk_size": 2**20,
+        "tol": None,
     }
 
     def validate(self) -> None:
@@ -140,12 +143,18 @@ class MonteCarloSolver(Solver):
         o["chunk_size"] = check_int(o["chunk_size"], "chunk_size", 1)
         if not isinstance(o["bridge"], (bool, np.bool_)):
             raise ValueError(f"bridge must be True or False, got {o['bridge']!r}")
+        if o["tol"] is not None:
+            raise ValueError(
+                f"monte-carlo has no tolerance control (tol = {o['tol']!r}): its error is statistical, the standard "
+                "error of the area falls as 1 / sqrt(n_walkers) (Solution.stderr_area); set n_walkers, or use "
+                "method='auto' (or 'fv' / 'mol') with tol"
+            )
         seed = o["seed"]
         ok = seed is None or isinstance(seed, (np.random.Generator, np.random.SeedSequence))
-        if not ok:
+        if not ok and not isinstance(seed, (bool, np.bool_, str, bytes, float)):  # True is not a seed
             try:
                 ok = int(seed) == seed and int(seed) >= 0
-            except (TypeError, ValueError):
+            except (TypeError, ValueError, OverflowError):
                 ok = False
         if not ok:
             raise ValueError(f"seed must be None, an integer >= 0, a SeedSequence or a numpy Generator, got {seed!r}")

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from persson_fp.surfaces.heightmap import MeasuredSurface, psd_from_heightmap, psd_from_profiles
+from persson_fp._validate import as_file_path
+from persson_fp.surfaces.heightmap import MeasuredSurface, as_bool, psd_from_heightmap, psd_from_profiles
 from persson_fp.surfaces.tabulated import TabulatedPSD
 
 __all__ = ["read_heightmap", "read_contact_engineering_csv", "from_surface_topography", "CE_SERIES"]
@@ -34,21 +35,22 @@ def read_heightmap(path, size, *, periodic: bool = False, **kwargs) -> MeasuredS
     Raises
     ------
     ValueError
-        A missing or unreadable file, or bad heights or size (see :func:`psd_from_heightmap`).
+        ``path`` not a file name (an int is not taken as a file descriptor), a missing, empty or unreadable
+        file, a folder, ``periodic`` not a bool, or bad heights or size (see :func:`psd_from_heightmap`).
     """
     import os
 
-    if not os.path.exists(path):
-        raise ValueError(f"no such file {path!r}")
+    path = as_file_path(path)
+    periodic = as_bool(periodic, "periodic")
     try:
-        if str(path).endswith(".npy"):
+        if path.endswith(".npy"):
             h = np.load(path, allow_pickle=False)
         else:
             with open(path) as fh:
                 first = fh.readline()
             h = np.loadtxt(path, delimiter="," if "," in first else None, comments="#")
-    except (OSError, ValueError) as err:
-        raise ValueError(f"{path}: cannot read a height map ({err})") from None
+    except (OSError, ValueError, EOFError, UnicodeDecodeError) as err:
+        raise ValueError(f"{path}: cannot read a height map ({err or type(err).__name__})") from None
     return psd_from_heightmap(h, size, periodic=periodic, source=f"height map {os.path.basename(str(path))}", **kwargs)
 
 
@@ -90,8 +92,7 @@ def read_contact_engineering_csv(path, series: str = "q/π × 2D PSD", H: float 
 
     if series not in CE_SERIES:
         raise ValueError(f"series must be one of {list(CE_SERIES)}, got {series!r}")
-    if not os.path.exists(path):
-        raise ValueError(f"no such file {path!r}")
+    path = as_file_path(path)
     with open(path, newline="", encoding="utf-8") as fh:
         reader = csv.reader(fh, delimiter=";")
         header = next(reader, None)

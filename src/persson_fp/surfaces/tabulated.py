@@ -11,7 +11,7 @@ import os
 import numpy as np
 from numpy.typing import ArrayLike
 
-from persson_fp._validate import as_float_array, check_in_range
+from persson_fp._validate import as_float_array, as_positive_scalar, check_in_range
 from persson_fp.surfaces.psd import PSD, powint, powint_inverse
 
 __all__ = ["TabulatedPSD"]
@@ -89,8 +89,12 @@ class TabulatedPSD(PSD):
                 )
         elif H is not None:
             raise ValueError("H is used only with convention='1d' (Abel factor)")
-        q_l = float(q[0]) if q_l is None else float(check_in_range(q_l, "q_l", q[0], q[-1], rtol=0.0))
-        q_s = float(q[-1]) if q_s is None else float(check_in_range(q_s, "q_s", q[0], q[-1], rtol=0.0))
+        if q_l is not None:
+            q_l = float(check_in_range(as_positive_scalar(q_l, "q_l"), "q_l", q[0], q[-1], rtol=0.0))
+        if q_s is not None:
+            q_s = float(check_in_range(as_positive_scalar(q_s, "q_s"), "q_s", q[0], q[-1], rtol=0.0))
+        q_l = float(q[0]) if q_l is None else q_l
+        q_s = float(q[-1]) if q_s is None else q_s
         if not q_s > q_l:
             raise ValueError(f"q_s must be > q_l = {q_l!r}, got {q_s!r}")
         self.q = q.copy()
@@ -127,11 +131,15 @@ class TabulatedPSD(PSD):
         Raises
         ------
         ValueError
-            A missing column, or a row with a non-numeric, non-finite, zero or negative value (the
-            message names the line).
+            ``path`` not the name of an existing file (an int is not taken as a file descriptor; a folder), a
+            missing column, or a row with a non-numeric, non-finite, zero or negative value (the message names
+            the line).
         """
         import csv
 
+        from persson_fp._validate import as_file_path
+
+        path = as_file_path(path)
         qs, Cs = [], []
         with open(path, newline="") as fh:
             reader = csv.DictReader(fh)

@@ -11,6 +11,7 @@ import csv
 import datetime
 import html
 import json
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,6 +19,12 @@ import numpy as np
 __all__ = ["SweepResult", "TaskFailure", "read_table"]
 
 _CSV_TAG = "# persson-fp sweep table; metadata (JSON) on the next line"
+"""First line of the tables written before the metadata moved to a sidecar file (still read)."""
+
+
+def metadata_path(path) -> str:
+    """The sidecar file of a CSV table's metadata: ``<path>.json``."""
+    return str(path) + ".json"
 
 
 @dataclass(frozen=True)
@@ -243,13 +250,14 @@ class SweepResult:
 
     # -- writers ------------------------------------------------------------------------------------------
     def to_csv(self, path) -> None:
-        """Write the tidy table as CSV; the first two lines are ``#`` comments holding the metadata
-        as JSON (:func:`persson_fp.read_sweep_table` reads them back into ``df.attrs``).  No pandas needed.
+        """Write the tidy table as plain CSV (a header row, then the rows: what ``pandas.read_csv`` and any CSV
+        reader expect) and the metadata as JSON next to it, in ``<path>.json``
+        (:func:`persson_fp.read_sweep_table` reads both back, the metadata into ``df.attrs``).  No pandas needed.
 
         Parameters
         ----------
         path : str or path-like
-            The file to write.
+            The file to write (the metadata go to ``str(path) + ".json"``).
 
         Returns
         -------
@@ -260,16 +268,17 @@ class SweepResult:
         except ImportError:
             pandas = None
         with open(path, "w", newline="") as fh:
-            fh.write(_CSV_TAG + "\n# " + json.dumps(_jsonable(self.metadata)) + "\n")
             if pandas is not None:  # ~10x faster; floats written as their shortest round-trip repr too
                 self.to_pandas().to_csv(fh, index=False)
-                return
-            cols = self.to_dict()
-            names = list(cols)
-            w = csv.writer(fh)
-            w.writerow(names)
-            for row in zip(*(cols[n] for n in names)):
-                w.writerow([_cell(v) for v in row])
+            else:
+                cols = self.to_dict()
+                names = list(cols)
+                w = csv.writer(fh)
+                w.writerow(names)
+                for row in zip(*(cols[n] for n in names)):
+                    w.writerow([_cell(v) for v in row])
+        with open(metadata_path(path), "w") as fh:
+            json.dump(_jsonable(self.metadata), fh, indent=1)
 
     def to_parquet(self, path) -> None:
         """Write the tidy table as Parquet with the metadata in the file (needs pandas and pyarrow).
@@ -333,7 +342,12 @@ def read_table(path):
     Returns
     -------
     pandas.DataFrame
-        The table, with the metadata in ``df.attrs`` (needs pandas).
+        The table, with the metadata in ``df.attrs`` (needs pandas): from ``<path>.json`` for a CSV.
+
+    Raises
+    ------
+    ValueError
+        A CSV without its metadata file (and not an earlier table with the metadata inside).
     """
     pd = _need("pandas", "pandas")
     path = str(path)
@@ -341,10 +355,17 @@ def read_table(path):
         return pd.read_parquet(path)
     with open(path, newline="") as fh:
         first = fh.readline()
-        if first.rstrip("\r\n") != _CSV_TAG:
-            raise ValueError(f"{path}: not a persson-fp sweep table (first line {first.strip()[:60]!r})")
-        meta = json.loads(fh.readline()[2:])
-        df = pd.read_csv(fh)
+        if first.rstrip("\r\n") == _CSV_TAG:  # a table from an earlier version: metadata in the file
+            meta = json.loads(fh.readline()[2:])
+            df = pd.read_csv(fh)
+            df.attrs = meta
+            return df
+    side = metadata_path(path)
+    if not os.path.isfile(side):
+        raise ValueError(f"{path}: not a persson-fp sweep table (no metadata file {side!r} next to it)")
+    with open(side) as fh:
+        meta = json.load(fh)
+    df = pd.read_csv(path)
     df.attrs = meta
     return df
 

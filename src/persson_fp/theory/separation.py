@@ -61,6 +61,10 @@ WEIGHTINGS = ("yang-persson", "corrected-area")
 
 _Y_MIN, _N_TAB = 1e-9, 6000
 _CHUNK = 512
+
+MAX_PER_UNIT = 1000
+"""Largest ``n_per_unit`` of :class:`MeanSeparation` (about 4e5 quadrature nodes)."""
+
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(12)
 _SQRT_2_PI = np.sqrt(2.0 / np.pi)
 
@@ -160,7 +164,7 @@ class MeanSeparation:
     weighting : {"yang-persson", "corrected-area"}
         How the energy weights each scale (module docstring); irrelevant without a fudge factor.
     n_per_unit : int
-        Gauss-Legendre panels per unit of :math:`\ln\sigma` (>= 1; 12 nodes each).  The default 2 gives
+        Gauss-Legendre panels per unit of :math:`\ln\sigma` (1 to 1000; 12 nodes each).  The default 2 gives
         ~1e-10 relative on the reference surfaces (tests check it against independent quadrature).
     decades : float
         The rule covers :math:`\sigma \in [\sigma_{max} e^{-\text{decades}\ln 10}, \sigma_{max}]` (>= 4); the part
@@ -170,7 +174,8 @@ class MeanSeparation:
     ------
     ValueError
         ``psd`` not a :class:`~persson_fp.PSD`, an unknown weighting or fudge model, ``E_star`` not > 0,
-        ``n_per_unit`` not an integer >= 1, or ``decades`` < 4.
+        ``n_per_unit`` not an integer in [1, 1000], ``decades`` < 4, or ``E_star`` so large or small that
+        V(zeta_max) leaves the floating-point range.
 
     Notes
     -----
@@ -195,8 +200,10 @@ class MeanSeparation:
             raise ValueError(f"psd must be a persson_fp PSD (SelfAffinePSD, TabulatedPSD), got {type(psd).__name__}")
         if weighting not in WEIGHTINGS:
             raise ValueError(f"weighting must be one of {list(WEIGHTINGS)}, got {weighting!r}")
-        if not isinstance(n_per_unit, (int, np.integer)) or n_per_unit < 1:
-            raise ValueError(f"n_per_unit must be an integer >= 1, got {n_per_unit!r}")
+        if isinstance(n_per_unit, (bool, np.bool_)) or not isinstance(n_per_unit, (int, np.integer)):
+            raise ValueError(f"n_per_unit must be an integer in [1, {MAX_PER_UNIT}], got {n_per_unit!r}")
+        if not 1 <= n_per_unit <= MAX_PER_UNIT:
+            raise ValueError(f"n_per_unit must be an integer in [1, {MAX_PER_UNIT}], got {n_per_unit!r}")
         decades = as_positive_scalar(decades, "decades")
         if decades < 4:
             raise ValueError(f"decades must be >= 4, got {decades!r}")
@@ -205,7 +212,13 @@ class MeanSeparation:
         self.fudge = _fudge.resolve(fudge)
         self.weighting = weighting
         self._w = _weight(self.fudge, weighting)
-        V_max = float(psd.V(E_star=self.E_star))
+        with np.errstate(over="ignore", under="ignore"):
+            V_max = float(psd.V(E_star=self.E_star))
+        if not (np.isfinite(V_max) and V_max > 1e-280):  # sigma reaches sqrt(V) 1e-14 (decades)
+            raise ValueError(
+                f"E_star = {self.E_star!r} and the spectrum give V(zeta_max) = {V_max!r} (V = E_star^2 <|grad h|^2> / "
+                "4), outside the floating-point range the quadrature needs; rescale the pressure unit (e.g. MPa)"
+            )
         self.sigma_max = np.sqrt(V_max)
         # panels in s = ln sigma, split at the sigma of the spectrum's kinks
         s_hi = np.log(self.sigma_max)
@@ -243,7 +256,8 @@ class MeanSeparation:
         w = self._w_ds if extra is None else self._w_ds * extra
         out = np.empty(p.size)
         for i in range(0, p.size, _CHUNK):  # blocks of loads keep the (loads x nodes) array small
-            out[i : i + _CHUNK] = f(p[i : i + _CHUNK, None] / self.sigma[None, :]) @ w
+            with np.errstate(over="ignore"):  # p_bar / sigma = inf far into full contact: f(inf) is its limit
+                out[i : i + _CHUNK] = f(p[i : i + _CHUNK, None] / self.sigma[None, :]) @ w
         return out.reshape(np.shape(p_bar))
 
     def mean_separation(self, p_bar) -> np.ndarray:
@@ -305,9 +319,22 @@ class MeanSeparation:
         -------
         ndarray, pressure / length
             K, of the shape of ``p_bar``.
+
+        Raises
+        ------
+        ValueError
+            A load so far into full contact that K exceeds the floating-point range (about 25 sqrt(V) and above).
         """
         p = self._loads(p_bar)
-        return p / self.dU_dp(p)
+        d = self.dU_dp(p)
+        if np.any(d <= 0):
+            worst = float(np.max(np.asarray(p)[np.asarray(d) <= 0]))
+            raise ValueError(
+                f"p_bar = {worst!r} is full contact (p_bar / sqrt(V(zeta_max)) = {worst / self.sigma_max:.3g}): dU/dp "
+                "underflows and the stiffness, which grows like exp(p_bar^2 / 2V), exceeds the floating-point range; "
+                f"loads up to about 25 sqrt(V) = {25 * self.sigma_max:.3g} are resolved"
+            )
+        return p / d
 
     def contact_area(self, p_bar) -> np.ndarray:
         r"""The contact area the weighting uses at the top magnification.

@@ -1,0 +1,148 @@
+"""The numbers the README and benchmarks/README quote are those of the committed results files.
+
+Each claim is a regular expression on the README text whose groups are numbers, and the same numbers computed from
+the results file the benchmark command wrote (``benchmarks/results/``), rounded as the README rounds them.  A
+re-measured results file whose numbers moved fails this test until the README quotes them again.
+"""
+
+import csv
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "benchmarks" / "results"
+
+
+def _text(name):
+    return " ".join((ROOT / name).read_text(encoding="utf8").split())  # line breaks as spaces
+
+
+def _rows(name):
+    with open(RESULTS / name, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _speed(run, fudge, label, threshold, key="time"):
+    """A row of a speed_accuracy_table.csv (``run``: "" for the committed run, "rerun" for the re-run)."""
+    rows = _rows(f"{run}/speed_accuracy_table.csv" if run else "speed_accuracy_table.csv")
+    row = next(r for r in rows if r["fudge"] == fudge and r["label"] == label and float(r["threshold"]) == threshold)
+    return float(row[key])
+
+
+def _batch(method, n, key):
+    row = next(r for r in _rows("batch_scaling.csv") if r["method"] == method and int(r["n_loads"]) == n)
+    return float(row[key]) if row[key] else None
+
+
+def _growth(method):
+    return _batch(method, 10_000, "time_1_thread") / _batch(method, 1000, "time_1_thread")
+
+
+def _sig(x, n):
+    """``x`` to ``n`` significant digits, as a string like the README writes it."""
+    return f"{float(f'{x:.{n}g}'):g}"
+
+
+# (README file, pattern with one group per number, the numbers from the results, significant digits)
+CLAIMS = {
+    "speed: sines vs py-pde at 1e-3 (README)": (
+        "README.md",
+        r"`sines` ([\d.]+) ms \(YP08 ([\d.]+) ms\) against py-pde's explicit Euler through `pf.solve` ([\d.]+) ms "
+        r"\(YP08 ([\d.]+) ms\): ([\d.]+)x and ([\d.]+)x in the committed run, ([\d.]+)x and ([\d.]+)x in a re-run",
+        lambda: [
+            _speed("", "none", "sines", 1e-3) * 1e3,
+            _speed("", "YP08", "sines", 1e-3) * 1e3,
+            _speed("", "none", "py-pde euler", 1e-3) * 1e3,
+            _speed("", "YP08", "py-pde euler", 1e-3) * 1e3,
+            _speed("", "none", "py-pde euler", 1e-3, "ratio_to_best_own"),
+            _speed("", "YP08", "py-pde euler", 1e-3, "ratio_to_best_own"),
+            _speed("rerun", "none", "py-pde euler", 1e-3, "ratio_to_best_own"),
+            _speed("rerun", "YP08", "py-pde euler", 1e-3, "ratio_to_best_own"),
+        ],
+        [2, 2, 2, 2, 3, 3, 3, 3],
+    ),
+    "speed: the re-run's ratios (benchmarks README)": (
+        "benchmarks/README.md",
+        r"benchmarks/results/rerun`\) measured ([\d.]+)x and ([\d.]+)x",
+        lambda: [_speed("rerun", f, "py-pde euler", 1e-3, "ratio_to_best_own") for f in ("none", "YP08")],
+        3,
+    ),
+    "speed: the re-run's times (README)": (
+        "README.md",
+        r"sines ([\d.]+) / ([\d.]+) ms, py-pde ([\d.]+) / ([\d.]+) ms\)",
+        lambda: [_speed("rerun", f, m, 1e-3) * 1e3 for m in ("sines", "py-pde euler") for f in ("none", "YP08")],
+        3,
+    ),
+    "batch: BLAS threads (README)": (
+        "README.md",
+        r"which was ([\d.]+)x faster than numpy's two threads for mol \(100 loads\) and ([\d.]+)x for sines \(1000",
+        lambda: [_batch("mol", 100, "default_over_1_thread"), _batch("sines", 1000, "default_over_1_thread")],
+        2,
+    ),
+    "batch: 1e4 loads (README)": (
+        "README.md",
+        r"1e4 loads: `pf.exact` ([\d.]+) ms, `sines` ([\d.]+) ms, `fv` ([\d.]+) s \(([\d.]+) MB\)",
+        lambda: [
+            _batch("exact", 10_000, "time_1_thread") * 1e3,
+            _batch("sines", 10_000, "time_1_thread") * 1e3,
+            _batch("fv", 10_000, "time_1_thread"),
+            _batch("fv", 10_000, "peak_MB"),
+        ],
+        3,
+    ),
+    "batch: growth (README)": (
+        "README.md",
+        r"the time grew ([\d.]+)x \(exact\), ([\d.]+)x \(fv\) and ([\d.]+)x \(sines\)",
+        lambda: [_growth("exact"), _growth("fv"), _growth("sines")],
+        3,
+    ),
+    "batch: growth (benchmarks README)": (
+        "benchmarks/README.md",
+        r"From 1000 to 1e4 loads: exact ([\d.]+)x the time, fv ([\d.]+)x, sines ([\d.]+)x",
+        lambda: [_growth("exact"), _growth("fv"), _growth("sines")],
+        3,
+    ),
+    "batch: BLAS threads (benchmarks README)": (
+        "benchmarks/README.md",
+        r"([\d.]+)x faster for mol with 100 loads and ([\d.]+)x for sines with 1000",
+        lambda: [_batch("mol", 100, "default_over_1_thread"), _batch("sines", 1000, "default_over_1_thread")],
+        3,
+    ),
+    "batch: memory (benchmarks README)": (
+        "benchmarks/README.md",
+        r"\(fv ([\d.]+) MB, sines ([\d.]+) MB, exact ([\d.]+) MB, mol ([\d.]+) MB up to 100 loads\)",
+        lambda: [
+            max(float(r["peak_MB"]) for r in _rows("batch_scaling.csv") if r["method"] == m and r["peak_MB"])
+            for m in ("fv", "sines", "exact", "mol")
+        ],
+        3,
+    ),
+    "batch: mol refused (README)": (
+        "README.md",
+        r"its estimate, ([\d.]+) GiB for 1000 loads",
+        lambda: [float(re.search(r"([\d.]+) GiB", _batch_refusal("mol", 1000)).group(1))],
+        3,
+    ),
+}
+
+
+def _batch_refusal(method, n):
+    return next(r for r in _rows("batch_scaling.csv") if r["method"] == method and int(r["n_loads"]) == n)["refused"]
+
+
+@pytest.mark.parametrize("claim", list(CLAIMS))
+def test_readme_quotes_the_results_file(claim):
+    doc, pattern, numbers, digits = CLAIMS[claim]
+    m = re.search(pattern, _text(doc))
+    assert m, f"{claim}: the sentence is no longer in {doc} (update CLAIMS with the README)"
+    values = numbers()
+    digits = digits if isinstance(digits, list) else [digits] * len(values)
+    quoted = [_sig(float(g), d) for g, d in zip(m.groups(), digits)]
+    measured = [_sig(v, d) for v, d in zip(values, digits)]
+    assert quoted == measured, f"{claim}: {doc} says {quoted}, the results file {measured}"
+
+
+def test_mol_is_refused_at_the_default_budget_in_the_results():
+    assert "max_memory" in _batch_refusal("mol", 1000) and "max_memory" in _batch_refusal("mol", 10_000)
