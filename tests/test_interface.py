@@ -323,7 +323,7 @@ def test_surface_command_writes_gaps_leak_rate_and_conductance(tmp_path, capsys)
     lines = open(tmp_path / "o" / "surface.csv").read().splitlines()
     rows = [ln.split(",") for ln in lines if not ln.startswith("#")]
     cols, data = rows[0], np.array(rows[1:], dtype=float)
-    psd = pf.psd_from_heightmap(h, 1.0).psd
+    psd = pf.psd_from_heightmap(h, 1.0, periodic=True).psd
     problem = pf.ContactProblem(psd, 1.0, data[:, cols.index("p_bar")], fudge="WM17")
     Q = pf.leak_rate(problem, viscosity=2.0, pressure_drop=3.0)
     np.testing.assert_allclose(data[:, cols.index("Q_cj_WM17")], Q, rtol=1e-10)
