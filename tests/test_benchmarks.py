@@ -190,6 +190,8 @@ def test_interface_vs_bem_quick(tmp_path):
         if p["model"] != "Persson":
             assert -0.35 < p["rel_error"] < 0.05
     assert "Kolmogorov" in (tmp_path / "interface_vs_bem.md").read_text()
+
+
 def test_calibration_vs_bem_quick(tmp_path):
     rows, trans, speed, cov = _module("calibration_vs_bem").main(["--quick", "--output", str(tmp_path)])
     assert (tmp_path / "calibration_vs_bem.md").exists() and (tmp_path / "calibration_speed.csv").exists()

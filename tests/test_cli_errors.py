@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 
 import persson_fp as pf
-from persson_fp.cli import app as cli
 from persson_fp.cli.app import main
 
 
@@ -131,7 +130,7 @@ def test_ctrl_c_is_interrupted_130_and_leaves_no_partial_file(tmp_path, monkeypa
                 raise KeyboardInterrupt
             self.w.writerow(row)
 
-    monkeypatch.setattr(cli.csv, "writer", Interrupting)
+    monkeypatch.setattr(csv, "writer", Interrupting)
     rc = main(["solve", "--method", "sines", "--output", str(out)])
     err = capsys.readouterr().err
     assert rc == 130 and "interrupted" in err and "Traceback" not in err

@@ -17,8 +17,7 @@ import time
 import numpy as np
 
 from persson_fp.cli._io import _atomic_open, _count, _make_parent, _note_replaced, _save_figure
-
-FUDGES = ["none", "YP08", "WM17", "Xu24"]
+from persson_fp.cli._problem import FUDGES
 
 MAX_LOADS = 100_000
 """Largest ``surface --n-loads`` (four models, each load a quadrature of ~400 nodes: ~5 s at the cap)."""
