@@ -476,12 +476,15 @@ class Solver:
 
     @staticmethod
     def check_state(P, mass, mass_prev, zeta, name, remedy="reduce the step or use an implicit scheme"):
-        """Raise :class:`InstabilityError` on NaN, negative mass or mass growth (per load)."""
+        """Raise :class:`InstabilityError` on NaN, negative mass or mass growth (per load).
+
+        Growth is judged with the invariant checks' area tolerance (``DEFAULT_TOLERANCES["area"]``, relative): an
+        unstable march grows far past it at once; a load with ~1 cell per sqrt(tau) can gain 1e-8 without being so."""
         if not np.all(np.isfinite(P)):
             raise InstabilityError(f"{name}: non-finite values at zeta = {zeta:.6g}; {remedy}")
         if np.any(mass < -1e-12):
             raise InstabilityError(f"{name}: negative contact area {mass.min():.3e} at zeta = {zeta:.6g}; {remedy}")
-        if mass_prev is not None and np.any(mass > mass_prev * (1 + 1e-8) + 1e-12):
+        if mass_prev is not None and np.any(mass > mass_prev * (1 + DEFAULT_TOLERANCES["area"]) + 1e-12):
             raise InstabilityError(
                 f"{name}: contact area grows ({np.max(mass - mass_prev):.3e}) at zeta = {zeta:.6g} -- "
                 "the discrete evolution is unstable, or oscillates so that a negative wall cell returns mass "

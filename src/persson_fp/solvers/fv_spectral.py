@@ -50,7 +50,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import fft as _fft
 
-from persson_fp.results.solution import InstabilityError
+from persson_fp.results.solution import DEFAULT_TOLERANCES, InstabilityError
 from persson_fp.solvers.fv_operators import _BDF2_A, _BDF2_B, _BDF2_W, _GAMMA, SPACES, march_result
 from persson_fp.theory.fudge import NoFudge
 
@@ -316,7 +316,7 @@ class SpectralPath:
             bad = (
                 ~(np.isfinite(Gk).all(axis=(1, 2)) & np.isfinite(mass_k).all(axis=0) & np.isfinite(norm_k).all(axis=0))
                 | (mass_k < -1e-12).any(axis=0)
-                | (mass_k > mass_prev * (1 + 1e-8) + 1e-12).any(axis=0)
+                | (mass_k > mass_prev * (1 + DEFAULT_TOLERANCES["area"]) + 1e-12).any(axis=0)
                 | (norm_k > 2.0 * norm0[:, None] + 1e-300).any(axis=0)
             )
         if bad.any():
