@@ -61,21 +61,35 @@ def _errors(sol):
     return L1, area, "estimate (|run - half-resolution run|)"
 
 
-def _attempt(problem, method, zeta_out, options):
+def _attempt(problem, method, zeta_out, options, budget):
     from persson_fp.solvers import get_solver
 
-    return get_solver(method)(problem, zeta_out=zeta_out, **options).run()
+    return get_solver(method)(problem, zeta_out=zeta_out, **budget, **options).run()
 
 
-def _first_options(problem, method, tol):
+def _min_engine_cells(problem, method, zeta_out, options) -> int:
+    """The fewest cells the front-fixed engine accepts for this scene (its resolution check), even, + 25 %."""
+    from persson_fp.solvers import get_solver
+    from persson_fp.solvers.engine.moving_wall import min_cells
+
+    k = options.get("k_domain", get_solver(method).OPTIONS.get("k_domain", 10.0))
+    z = problem.zeta_max if zeta_out is None else zeta_out
+    V_st = np.atleast_1d(np.asarray(problem.V(np.atleast_1d(np.asarray(z, dtype=float))), dtype=float))
+    return 2 * int(math.ceil(1.25 * min_cells(problem, V_st, k) / 2))
+
+
+def _first_options(problem, method, tol, zeta_out=None, options=None):
     if method == "sines":
         return {"tol": min(max(tol * 1e-2, 1e-14), 1e-2)}
-    if method == "mol":
-        return {"rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
-    if not problem.has_closed_form:
+    if not problem.has_closed_form:  # the front-fixed engine (fv, and mol's lines on the same fluxes)
         C = _C_GENERAL if problem.general else _C_FRONT
         n = 2 * int(np.clip(math.ceil(math.sqrt(C / tol) / 2), 25, 1600))  # even: the partner has n/2
+        n = max(n, _min_engine_cells(problem, method, zeta_out, options or {}))
+        if method == "mol":
+            return {"n_p": n, "rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
         return {"n_p": n, "n_steps": n}
+    if method == "mol":
+        return {"rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
     n_steps = int(np.clip(math.ceil(math.sqrt(2.0 * _C_FV_STEPS / tol)), 20, 20000))
     n_p = int(np.clip(math.ceil((2.0 * _C_FV_CELLS / tol) ** 0.25), 50, 20000))
     return {"n_p": n_p, "n_steps": n_steps}
@@ -88,7 +102,8 @@ def _refine(method, opts, problem, ratio):
         out["tol"] = max(opts["tol"] * 1e-2, 1e-15)
     elif method == "mol":
         out["rtol"] = max(opts["rtol"] * 1e-2, 1e-13)
-        out["n_p"] = int(math.ceil(1.5 * (opts.get("n_p") or 200)))
+        f = 1.5 if problem.has_closed_form else float(np.clip(1.2 * math.sqrt(ratio), 1.5, 8.0))
+        out["n_p"] = 2 * int(math.ceil(f * (opts.get("n_p") or 200) / 2))
     else:
         f = float(np.clip(1.2 * math.sqrt(ratio), 1.5, 8.0))  # second order in both (front-fixed) or in steps
         out["n_steps"] = 2 * int(math.ceil(opts["n_steps"] * f / 2))
@@ -96,13 +111,32 @@ def _refine(method, opts, problem, ratio):
     return out
 
 
-def solve_to_tol(problem, method: str, zeta_out, tol: float, why: str = "", **options):
-    """Solve with ``method`` at a resolution chosen for ``tol``, check the error, refine until it meets ``tol``."""
+def solve_to_tol(
+    problem, method: str, zeta_out, tol: float, why: str = "", *, max_memory=None, max_time=None, **options
+):
+    """Solve with ``method`` at a resolution chosen for ``tol``, check the error, refine until it meets ``tol``.
+
+    ``max_memory`` / ``max_time`` bound every attempt (the solver's own estimate refuses one that would exceed
+    them) and ``max_time`` also the whole refinement: a refinement whose predicted time (the last attempt's, scaled
+    by the growth of n_p x n_steps) would overrun it is refused with a :class:`~persson_fp.SolverError`."""
     t0 = time.perf_counter()
-    opts = {**_first_options(problem, method, tol), **options}
+    opts = {**_first_options(problem, method, tol, zeta_out, options), **options}
+    budget = {"max_memory": max_memory, "max_time": max_time}
     attempts = []
     for k in range(MAX_REFINE + 1):
-        sol = _attempt(problem, method, zeta_out, opts)
+        if max_time is not None and attempts:
+            prev = attempts[-1]
+            grow = _work(opts) / max(_work(prev["options"]), 1.0)
+            predicted = prev["wall_time"] * grow
+            left = max_time - (time.perf_counter() - t0)
+            if predicted > left:
+                raise SolverError(
+                    f"{method}: tol = {tol:g} not met within max_time = {max_time:g} s (best: L1 {prev['L1']:.3e}, "
+                    f"area error {prev['area_error']:.3e}; the next refinement would take about {predicted:.3g} s, "
+                    f"{left:.3g} s are left); ask for a looser tol or a larger max_time"
+                )
+            budget["max_time"] = left
+        sol = _attempt(problem, method, zeta_out, opts, budget)
         L1, area, kind = _errors(sol)
         attempts.append({"options": dict(opts), "L1": L1, "area_error": area, "wall_time": sol.wall_time})
         if L1 <= tol and area <= tol:
@@ -131,11 +165,17 @@ def solve_to_tol(problem, method: str, zeta_out, tol: float, why: str = "", **op
     return sol
 
 
-def solve_auto(problem, zeta_out=None, tol: float = 1e-6, **options):
+def _work(opts) -> float:
+    """Relative cost of an attempt: n_p x n_steps (or n_p alone where no steps are set)."""
+    return float(opts.get("n_p") or 200) * float(opts.get("n_steps") or 1)
+
+
+def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, max_time=None, **options):
     """``method="auto"``: the cheapest way to ``tol`` (module docstring)."""
     from persson_fp.solvers.base import check_float
 
     tol = check_float(tol, "tol", 0.0, 1e-1)
+    budget = {"max_memory": max_memory, "max_time": max_time}
     if options:
         raise TypeError(f"method 'auto' chooses the resolution itself; it takes only tol and zeta_out, got {options}")
     if problem.has_closed_form:
@@ -144,13 +184,13 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, **options):
             "at every tolerance measured in benchmarks/results)"
         )
         try:
-            return solve_to_tol(problem, "sines", zeta_out, tol, why=why)
+            return solve_to_tol(problem, "sines", zeta_out, tol, why=why, **budget)
         except (ValueError, SolverError) as err:
             why = f"the sine series could not serve this scene ({err}); finite volumes with a resolution for tol"
-            return solve_to_tol(problem, "fv", zeta_out, tol, why=why)
+            return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
     what = "a scale-dependent hardness" if problem.moving_wall else "general Fokker-Planck coefficients"
     why = (
         f"no closed form ({what}): finite volumes on the front-fixed engine, n cells and n steps from the "
         "measured error model C/n^2, checked by a half-resolution partner run"
     )
-    return solve_to_tol(problem, "fv", zeta_out, tol, why=why)
+    return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)

@@ -33,11 +33,14 @@ station (``info["error_estimate"]``); the observed order is measured in the test
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.solution import SolverError
 from persson_fp.solvers.engine import fluxes as engine
+from persson_fp.solvers.engine.domain import coefficient_domain
 from persson_fp.theory.fudge import NoFudge
 from persson_fp.theory.strip import strip_cdf, strip_quantities
 
@@ -58,7 +61,7 @@ class MovingWall:
         Cells in x = p / sigma_Y.
     """
 
-    def __init__(self, problem: ContactProblem, n: int, k_domain: float = 10.0):
+    def __init__(self, problem: ContactProblem, n: int, k_domain: float = 10.0, p_end: float | None = None):
         self.problem = problem
         self.n = n
         self.h = 1.0 / n
@@ -67,10 +70,19 @@ class MovingWall:
         self.no_fudge = isinstance(problem.fudge, NoFudge)
         self.general = problem.general
         self.elastic = ContactProblem(problem.psd, problem.E_star, problem.p_bar, problem.fudge)
-        # without a hardness the far wall is the end of the numerical domain (what it absorbs is reported as lost)
-        self.p_end = problem.p_max(k_domain) if problem.hardness is None else None
+        # without a hardness the far wall is the end of the numerical domain (what it absorbs is reported as lost);
+        # general coefficients: sized from B1 and B2 themselves (persson_fp.solvers.engine.domain)
+        if problem.hardness is not None:
+            self.p_end = None
+        elif p_end is not None:
+            self.p_end = float(p_end)
+        else:
+            self.p_end = domain_end(problem, k_domain)[0]
         self._cache = {}
         self._coef_cache = {}
+        self._drift_cache = {}
+        self.deadline = None
+        """perf_counter() time by which a march must be done (the solver's max_time), or None."""
 
     # -- the wall along V --------------------------------------------------------------------------------
     def zeta(self, V):
@@ -128,8 +140,9 @@ class MovingWall:
         z = float(self.zeta(V)[0])
         dVdz = float(pr.dV_dzeta(z))
         B1f, B2f = pr.coefficients(s * self.x_faces, z)
-        _, B2c = pr.coefficients(s * self.x, z)
+        B1c, B2c = pr.coefficients(s * self.x, z)
         b1f, b2f, b2c = B1f / dVdz, B2f / dVdz, B2c / dVdz
+        self._drift_cache[V] = B1c / dVdz
         v = (sV / s) * self.x_faces - b1f / s
         if sV > 0 and not b2f[-1] > 0:
             raise ValueError(f"B2 must be > 0 at a moving yield wall (p = {s:.6g}, zeta = {z:.6g}), got {B2f[-1]!r}")
@@ -143,6 +156,33 @@ class MovingWall:
         )
         self._coef_cache[V] = c
         return c
+
+    def drift_cells(self, V) -> np.ndarray:
+        """b1 = B1 / V'(zeta) at the cell centres at V (pressure per unit V), zeros without general coefficients."""
+        if not self.general:
+            return np.zeros(self.n)
+        if V not in self._drift_cache:
+            self._general_coefficients(V)
+        return self._drift_cache[V]
+
+    def drift_rate(self, V, y) -> np.ndarray:
+        r"""d/dV of the load carried by the drift, :math:`\int b_1 P\,dp = \sum_i b_1(p_i) w_i h` (m,)."""
+        if not self.general:
+            return np.zeros(y.shape[0])
+        return (y[:, : self.n] @ self.drift_cells(V)) * self.h
+
+    def load(self, V, y) -> np.ndarray:
+        """F_el + s a: the load of the state y (m, n + 1) at V (elastic, plus the wall's mass at the wall)."""
+        s, _ = self.wall(V)
+        return s * ((y[:, : self.n] @ self.x) * self.h + y[:, self.n])
+
+    def check_deadline(self, V) -> None:
+        """:class:`~persson_fp.SolverError` once the march has run past its ``deadline`` (max_time)."""
+        if self.deadline is not None and time.perf_counter() > self.deadline:
+            raise SolverError(
+                f"moving wall / general engine: max_time exceeded at zeta = {float(self.zeta(V)[0]):.6g} (of "
+                f"{float(self.problem.zeta_max):.6g}); use fewer cells or steps, or pass a larger max_time (seconds)"
+            )
 
     # -- start, nodes -----------------------------------------------------------------------------------
     def start(self, V0):
@@ -222,6 +262,10 @@ class MovingWall:
         A_non = np.empty((n_st, m))
         s_st = np.empty(n_st)
         absorbed = np.zeros(m)
+        drift = np.zeros(m)  # int b1 P dp dV since V0 (the first-moment law, info["load_law"])
+        drift_st = np.empty((n_st, m))
+        load0 = self.load(V0, y)
+        rate = self.drift_rate(V0, y)
         peclet = 0.0
         k_st = 0
         for k in range(V_nodes.size - 1):
@@ -240,15 +284,21 @@ class MovingWall:
             coef = lambda V, S_bar=S_bar: self.coefficients(V, S_bar)  # noqa: E731
             y, j = engine.step(coef, Va, dV, y, h, "be-halves" if k < damped else scheme, source)
             absorbed += j
+            rate_b = self.drift_rate(Vb, y)
+            drift += 0.5 * dV * (rate + rate_b)  # trapezoid in V: second order, like the march
+            rate = rate_b
             c = coef(Vb)
             peclet = max(peclet, float(np.max(np.abs(c.v[:, -1]) * h / np.max(c.D))))
             if not np.all(np.isfinite(y)):
                 raise SolverError(f"moving wall: non-finite values at V = {Vb:.6g}; raise n_steps")
+            if self.deadline is not None and k % 16 == 15:
+                self.check_deadline(Vb)
             while k_st < n_st and k + 1 == st_idx[k_st]:
                 W[k_st] = y[:, :-1]
                 A_pl[k_st] = y[:, -1]
                 A_non[k_st] = A_non0 + absorbed
                 s_st[k_st] = self.wall(Vb)[0]
+                drift_st[k_st] = drift
                 k_st += 1
         A_el = W.sum(axis=-1) * h
         F_el = s_st[:, None] * (W @ self.x) * h
@@ -263,15 +313,25 @@ class MovingWall:
             "V0": V0,
             "zeta0": float(self.zeta(V0)[0]),
             "start_plastic_area": float(np.max(A_pl0)),
+            "start_load": load0,
+            "drift_load": drift_st,
             "steps": V_nodes.size - 1,
             "max_cell_peclet": peclet,
         }
 
 
-def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0) -> None:
+def min_cells(problem, V_st, k_domain: float = 10.0, p_end=None) -> int:
+    """The fewest cells n with which the PDF spans at least one cell at every station (:func:`check_resolved`)."""
+    s = MovingWall(problem, 4, k_domain, p_end).wall_many(V_st)[0]
+    S1 = float(problem.fudge.S(np.array(1.0)))
+    return int(np.ceil(float(np.max(s / np.sqrt(S1 * np.asarray(V_st, dtype=float)))) * (1.0 + 1e-12)))
+
+
+def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0, p_end=None) -> None:
     """``ValueError`` unless the PDF spans at least one cell of the stretched grid at every station:
-    sqrt(tau) >= sigma_Y / n, tau taken as S(1) V (its largest value before contact is lost)."""
-    mw = MovingWall(problem, n, k_domain)
+    sqrt(tau) >= sigma_Y / n (or p_end / n without a hardness), tau taken as S(1) V (its largest value before
+    contact is lost)."""
+    mw = MovingWall(problem, n, k_domain, p_end)
     s, _ = mw.wall_many(V_st)
     S1 = float(problem.fudge.S(np.array(1.0)))
     need = s / n
@@ -280,10 +340,19 @@ def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0) -> No
     if np.any(bad):
         i = int(np.argmax(bad))
         raise ValueError(
-            f"moving wall: the PDF at zeta = {zeta_st[i]:.6g} (width sqrt(tau) ~ {have[i]:.3e}) is narrower than "
-            f"one cell of the grid on [0, sigma_Y] = [0, {s[i]:.4g}] with n_p = {n}; raise n_p to >= "
+            f"moving wall / general engine: the PDF at zeta = {zeta_st[i]:.6g} (width sqrt(tau) ~ {have[i]:.3e}) "
+            f"is narrower than one cell of the grid on [0, {s[i]:.4g}] with n_p = {n}; raise n_p to >= "
             f"{int(np.ceil(n * float(np.max(need / have))))} or start zeta_out later"
         )
+
+
+def domain_end(problem, k_domain: float):
+    """(p_end, info) of the far wall without a hardness: from the coefficients for a general problem
+    (:func:`~persson_fp.solvers.engine.domain.coefficient_domain`), else max(p_bar) + k sqrt(tau)."""
+    if problem.general:
+        return coefficient_domain(problem, k_domain)
+    p_end = float(problem.p_max(k_domain))
+    return p_end, {"p_end": p_end, "rule": "max(p_bar) + k_domain sqrt(tau(zeta_max))"}
 
 
 _QUANTITIES = ("elastic_area", "plastic_area", "noncontact_area", "elastic_load", "plastic_load")
@@ -329,13 +398,39 @@ def solve_cells(
 
 def run_pair(solver, n: int, zeta0, k_domain: float, run):
     """The run at n cells and its partner at n/2 from the same start: ``run(mw, V_st, V0, level)`` (level 0, 1)
-    returns the per-station dict of :meth:`MovingWall.solve`; the resolution is checked first."""
+    returns the per-station dict of :meth:`MovingWall.solve`; the resolution is checked first.
+
+    General coefficients: the start (a frozen-coefficient Gaussian) is not exact, and a partner that shares it
+    cannot see its error.  A third run at n/2 from twice the start-up variance measures it:
+    ``fine["start_error"] = |Q(n/2, 2 V0) - Q(n/2, V0)|`` (an upper bound for a start error of order >= 1 in V0;
+    the two coarse runs share their grid, so their difference is the start alone)."""
     pr = solver.problem
     V_st = np.asarray(solver.V_out, dtype=float)
-    check_resolved(pr, V_st, n, solver.zeta_out, k_domain)
-    fine = run(MovingWall(pr, n, k_domain), V_st, _start_V(pr, zeta0), 0)
-    coarse = run(MovingWall(pr, max(n // 2, 4), k_domain), V_st, fine["V0"], 1)
+    p_end, dom = (None, None) if pr.hardness is not None else domain_end(pr, k_domain)
+    check_resolved(pr, V_st, n, solver.zeta_out, k_domain, p_end)
+    deadline = time.perf_counter() + float(getattr(solver, "max_time", np.inf))
+
+    def grid(cells):
+        mw = MovingWall(pr, cells, k_domain, p_end)
+        mw.deadline = deadline
+        return mw
+
+    fine = run(grid(n), V_st, _start_V(pr, zeta0), 0)
+    coarse = run(grid(max(n // 2, 4)), V_st, fine["V0"], 1)
+    fine["domain"] = dom
+    if pr.general:
+        V1 = 2.0 * fine["V0"]
+        if V1 >= 0.5 * V_st[0]:  # no room before the first station: start earlier instead
+            V1 = 0.5 * fine["V0"]
+        other = run(grid(max(n // 2, 4)), V_st, V1, 1)
+        fine["start_error"] = {q: np.abs(other[q] - coarse[q]) for q in _QUANTITIES}
+        fine["start_error"]["L1"] = np.abs(other["W"] - coarse["W"]).sum(axis=-1) / coarse["W"].shape[-1]
+        fine["start_V"] = (fine["V0"], V1)
     return fine, coarse
+
+
+def _parts(parts: dict) -> str:
+    return ", ".join(f"{k} {v:.2e}" for k, v in parts.items())
 
 
 def _start_V(pr, zeta0):
@@ -356,22 +451,37 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
         est["L1"] = np.abs(0.5 * (Wf[..., 0::2] + Wf[..., 1::2]) - Wc).sum(axis=-1) / Wc.shape[-1]
     else:
         est["L1"] = np.full(fine["elastic_area"].shape, np.nan)
+    parts = {"discretisation": max(float(np.max(est[q])) for q in ("elastic_area", "plastic_area", "noncontact_area"))}
+    start = fine.get("start_error")
+    if start is not None:  # the approximate start, measured apart from the Richardson pair (run_pair)
+        for q in est:
+            est[q] = est[q] + start[q]
+        parts["start"] = max(float(np.max(start[q])) for q in ("elastic_area", "noncontact_area"))
+    far = None
+    if pr.hardness is None:  # mass lost through the far wall: the true A_el and A_non may hold up to it each
+        far = fine["plastic_area"]
+        for q in ("elastic_area", "noncontact_area", "L1"):
+            est[q] = est[q] + far
+        parts["far_wall"] = float(np.max(far))
     area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
     area_residual = float(np.max(np.abs(area_sum - 1.0)))
-    if pr.general:  # a drift B1 moves the load: F_el + F_pl = p_bar is not a law of the general equation
-        load_residual = float("nan")
-    else:
-        load_residual = float(np.max(np.abs(fine["elastic_load"] + fine["plastic_load"] - pr.p_bar) / pr.p_bar))
+    # the first-moment law: F_el + s a = L0 + int int b1 P dp dV (the wall at p = 0 carries no load; without a
+    # hardness s a is what the far wall took away, with one it is the plastic load)
+    L0 = fine["start_load"] if pr.general else pr.p_bar
+    law_total = L0[None, :] + fine["drift_load"]
+    total = fine["elastic_load"] + fine["plastic_load"]
+    load_residual = float(np.max(np.abs(total - law_total) / pr.p_bar))
     if area_residual > 1e-10:
         raise SolverError(
             f"moving wall: the areas do not sum to 1 (residual {area_residual:.3e}): the conservative scheme broke; "
             "this is a bug or an unstable step -- raise n_steps"
         )
     worst_area = max(float(np.max(est[q])) for q in ("elastic_area", "plastic_area", "noncontact_area"))
-    if tol is not None and (worst_area > tol or (np.isfinite(load_residual) and load_residual > tol)):
+    if tol is not None and (worst_area > tol or load_residual > tol):
         raise SolverError(
-            f"moving wall: the error estimate {worst_area:.3e} (areas, Richardson) or the load residual "
-            f"{load_residual:.3e} exceeds tol = {tol:.3g}; raise n_p and n_steps (both enter at second order)"
+            f"moving wall / general engine: the error estimate {worst_area:.3e} (areas: {_parts(parts)}) or the "
+            f"load residual {load_residual:.3e} exceeds tol = {tol:.3g}; raise n_p and n_steps (both enter at "
+            "second order)" + ("; a far-wall loss shrinks with a larger k_domain" if far is not None else "")
         )
     s = fine["s"]
     p = s[:, None] * (np.arange(n) + 0.5)[None, :] / n
@@ -380,12 +490,16 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
         "zeta0": fine["zeta0"],
         **info_extra,
         "moving_wall": True,
-        "error_estimate": {**est, "method": what, "max_area": worst_area},
+        "error_estimate": {**est, "method": what, "max_area": worst_area, "parts": parts},
         "area_residual": area_residual,
         "load_residual": load_residual,
+        # what sol.load (int p P0 dp + sigma_Y A_pl) must equal by the first-moment law (checked by the invariants)
+        "load_law": law_total - (fine["plastic_load"] if pr.hardness is None else 0.0),
         "start_plastic_area": fine["start_plastic_area"],
         "far_wall_mass": float(np.max(fine["plastic_area"])) if pr.hardness is None else 0.0,
         "max_cell_peclet": fine["max_cell_peclet"],
+        **({"domain": fine["domain"]} if fine.get("domain") else {}),
+        **({"start_V": fine["start_V"]} if "start_V" in fine else {}),
     }
     return SolverOutput(
         p=p,
