@@ -41,6 +41,10 @@ _C_FRONT = 2e-2
 _C_GENERAL = 50.0
 """General coefficients on [0, p_max] (a wider domain in units of the PDF's width): estimate ~ _C_GENERAL / n^2
 (about 40 measured on the scene of benchmarks/auto.py)."""
+_CELLS_PER_WIDTH = 4.0
+"""The front-fixed engine's first attempt puts at least this many cells across the PDF's width sqrt(V) at the first
+station (the engine itself refuses fewer than one; with one or two a moving wall rings: a dip of -0.19 x the peak
+measured on the README's moving-wall scene at 66 cells)."""
 _C_FV_STEPS = 0.06
 """fv TR-BDF2 (compact4, graded steps), closed-form scenes: L1 ~ _C_FV_STEPS / n_steps^2 (speed_accuracy.md)."""
 _C_FV_CELLS = 6e-6 * 200.0**4
@@ -68,14 +72,14 @@ def _attempt(problem, method, zeta_out, options, budget):
 
 
 def _min_engine_cells(problem, method, zeta_out, options) -> int:
-    """The fewest cells the front-fixed engine accepts for this scene (its resolution check), even, + 25 %."""
+    """Cells for the front-fixed engine's first attempt: ``_CELLS_PER_WIDTH`` x the fewest it accepts, even."""
     from persson_fp.solvers import get_solver
     from persson_fp.solvers.engine.moving_wall import min_cells
 
     k = options.get("k_domain", get_solver(method).OPTIONS.get("k_domain", 10.0))
     z = problem.zeta_max if zeta_out is None else zeta_out
     V_st = np.atleast_1d(np.asarray(problem.V(np.atleast_1d(np.asarray(z, dtype=float))), dtype=float))
-    return 2 * int(math.ceil(1.25 * min_cells(problem, V_st, k) / 2))
+    return 2 * int(math.ceil(_CELLS_PER_WIDTH * min_cells(problem, V_st, k) / 2))
 
 
 def _first_options(problem, method, tol, zeta_out=None, options=None):
@@ -123,6 +127,7 @@ def solve_to_tol(
     opts = {**_first_options(problem, method, tol, zeta_out, options), **options}
     budget = {"max_memory": max_memory, "max_time": max_time}
     attempts = []
+    _check_cells(method, tol, opts, problem, attempts, math.inf, math.inf, "no attempt yet")
     for k in range(MAX_REFINE + 1):
         if max_time is not None and attempts:
             prev = attempts[-1]
@@ -136,7 +141,19 @@ def solve_to_tol(
                     f"{left:.3g} s are left); ask for a looser tol or a larger max_time"
                 )
             budget["max_time"] = left
-        sol = _attempt(problem, method, zeta_out, opts, budget)
+        t_try = time.perf_counter()
+        try:
+            sol = _attempt(problem, method, zeta_out, opts, budget)
+        except SolverError as err:  # an invariant breached (e.g. ringing on a coarse grid): refine, unless the last
+            if k == MAX_REFINE or "max_time" in str(err):
+                raise
+            L1 = area = math.inf
+            kind = f"failed: {str(err)[:200]}"
+            attempts.append({"options": dict(opts), "L1": L1, "area_error": area, "wall_time": 0.0, "failed": kind})
+            attempts[-1]["wall_time"] = time.perf_counter() - t_try
+            opts = _refine(method, opts, problem, 16.0)
+            _check_cells(method, tol, opts, problem, attempts, L1, area, kind)
+            continue
         L1, area, kind = _errors(sol)
         attempts.append({"options": dict(opts), "L1": L1, "area_error": area, "wall_time": sol.wall_time})
         if L1 <= tol and area <= tol:
@@ -147,11 +164,7 @@ def solve_to_tol(
                 f"{area:.3e}, {kind}, with {opts}); ask for a looser tol or pass the resolution yourself"
             )
         opts = _refine(method, opts, problem, max(L1, area) / tol)
-        if max(opts.get("n_p") or 0, 0 if problem.has_closed_form else opts.get("n_steps", 0)) > MAX_CELLS:
-            raise SolverError(
-                f"{method}: tol = {tol:g} would need more than {MAX_CELLS} cells/steps (best so far: L1 {L1:.3e}, area "
-                f"error {area:.3e}, {kind}, with {attempts[-1]['options']}); ask for a looser tol"
-            )
+        _check_cells(method, tol, opts, problem, attempts, L1, area, kind)
     sol.info["auto"] = {
         "method": method,
         "why": why or f"method {method!r} asked for; resolution chosen for tol",
@@ -163,6 +176,16 @@ def solve_to_tol(
         "total_time": time.perf_counter() - t0,
     }
     return sol
+
+
+def _check_cells(method, tol, opts, problem, attempts, L1, area, kind) -> None:
+    """SolverError when the next attempt would need more than MAX_CELLS cells or steps (refused before it runs)."""
+    if max(opts.get("n_p") or 0, 0 if problem.has_closed_form else opts.get("n_steps") or 0) > MAX_CELLS:
+        best = attempts[-1]["options"] if attempts else opts
+        raise SolverError(
+            f"{method}: tol = {tol:g} would need more than {MAX_CELLS} cells/steps (best so far: L1 {L1:.3e}, area "
+            f"error {area:.3e}, {kind}, with {best}); ask for a looser tol"
+        )
 
 
 def _work(opts) -> float:

@@ -462,7 +462,8 @@ class MethodOfLinesSolver(Solver):
         wq = quadrature_weights(o["n_p"], h, o["order"])
         plastic = None
         if pr.hardness is not None:  # the strip's load balance F_el + sigma A_pl = p_bar gives A_pl
-            plastic = (pr.p_bar - P_full @ (wq * p)) / float(pr.hardness.sigma(1.0))
+            # (clipped at 0: the quadrature error of F_el may push a vanishing A_pl a little below, -5e-8 measured)
+            plastic = np.maximum((pr.p_bar - P_full @ (wq * p)) / float(pr.hardness.sigma(1.0)), 0.0)
         return SolverOutput(p=p, P0=P_full, weights=wq, kind="point", info=info, plastic_area=plastic)
 
     def _solve_in_chunks(self) -> SolverOutput:

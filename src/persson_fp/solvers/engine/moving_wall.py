@@ -462,6 +462,8 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
         far = fine["plastic_area"]
         for q in ("elastic_area", "noncontact_area", "L1"):
             est[q] = est[q] + far
+        # A* = A_el = 1 - A_non - A_far: Solution reads the A* estimate from the A_non one, so it holds both
+        est["noncontact_area"] = np.maximum(est["noncontact_area"], est["elastic_area"])
         parts["far_wall"] = float(np.max(far))
     area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
     area_residual = float(np.max(np.abs(area_sum - 1.0)))
