@@ -17,7 +17,8 @@ The references are written here, not taken from the engine:
 
 Every result is compared by its L1 error of P0 and its contact-area error at every station with its own estimate
 (``sol.error_estimate``): none may be more than 2x over it, and a ``tol=`` result none over ``tol``.  The default
-run draws a small sample; the slow test draws 320 (the count the engine is held to).
+run draws a small sample and the slow test 40; ``benchmarks/honesty.py`` draws 320 (the count the engine is held
+to, results/honesty.md).
 """
 
 from __future__ import annotations
@@ -188,13 +189,13 @@ def _sweep(n, seed):
 
 
 def test_estimates_are_honest_small_sample():
-    ran, bad, _ = _sweep(10, seed=1)
-    assert ran >= 8
+    ran, bad, _ = _sweep(6, seed=1)
+    assert ran >= 5
     assert not bad, bad
 
 
 @pytest.mark.slow
-def test_estimates_are_honest_320_random_problems():
-    ran, bad, results = _sweep(320, seed=2026)
-    assert ran >= 300, [lab for r, _, lab in results if r is None]
+def test_estimates_are_honest_40_random_problems():
+    ran, bad, results = _sweep(40, seed=2026)  # (320 in benchmarks/honesty.py: results/honesty.md)
+    assert ran >= 36, [lab for r, _, lab in results if r is None]
     assert not bad, bad

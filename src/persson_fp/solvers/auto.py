@@ -164,6 +164,14 @@ def solve_to_tol(
                 f"{area:.3e}, {kind}, with {opts}); ask for a looser tol or pass the resolution yourself"
             )
         opts = _refine(method, opts, problem, max(L1, area) / tol)
+        far = sol.info.get("error_estimate", {}).get("parts", {}).get("far_wall", 0.0)
+        if far > 0.25 * tol:  # the far wall took mass that matters: grow the domain (and the cells with it)
+            from persson_fp.solvers import get_solver
+
+            k = float(opts.get("k_domain", get_solver(method).OPTIONS.get("k_domain", 10.0)))
+            opts["k_domain"] = 1.5 * k
+            opts["n_p"] = 2 * int(math.ceil(1.5 * opts["n_p"] / 2))
+            attempts[-1]["grow_domain"] = f"far-wall loss {far:.2e} > tol / 4: k_domain {k:g} -> {1.5 * k:g}"
         _check_cells(method, tol, opts, problem, attempts, L1, area, kind)
     sol.info["auto"] = {
         "method": method,

@@ -139,13 +139,9 @@ MEMORY_MODELS = {
     # (options, n_loads, n_stations, with_fudge) -> bytes, fitted to tracemalloc peaks (reference problem)
     # fv: 85 MB at n_p = 2e4, 100 steps; 1.67 GB at 2000 steps (the trajectory of one load is kept)
     "fv": lambda o, nl, nz, f: 48.0 * o["n_p"] * (o["n_steps"] + 10) + 160.0 * o["n_p"] * nl,
-    # mol (tracemalloc peaks, benchmarks/mol_memory.py): ~400-600 bytes per grid point and load of a chunk of at most
-    # 250 loads (9.5 MB at n_p = 2e4; 40-58 MB for 50 loads x 2000 points; 15-29 MB for 1000 loads), plus the dense
-    # per-load Jacobian blocks of variable="zeta" with a fudge factor
+    # mol: ~600 B per point and load of a chunk (<= 250 loads), + dense blocks in zeta (benchmarks/mol_memory.py)
     "mol": lambda o, nl, nz, f: (
-        600.0 * o["n_p"] * min(nl, 250)
-        + 65536.0
-        + (24.0 * o["n_p"] ** 2 * nl if f and o.get("variable") == "zeta" else 0)
+        600.0 * o["n_p"] * min(nl, 250) + 65536.0 + 24.0 * o["n_p"] ** 2 * nl * (f and o.get("variable") == "zeta")
     ),
     # Chapman--Kolmogorov: 22 MB at n_p = 2e4 (banded kernel)
     "chapman-kolmogorov": lambda o, nl, nz, f: 1e3 * o["n_p"] * nl + 8.0 * o["n_p"] * nl * nz,

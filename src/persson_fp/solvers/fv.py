@@ -86,7 +86,7 @@ import numpy as np
 
 from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
-from persson_fp.solvers.engine import moving_wall
+from persson_fp.solvers.engine import estimate as moving_wall_estimate
 from persson_fp.solvers.fv_operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
     _BDF2_A,
     _BDF2_B,
@@ -474,7 +474,7 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
         scheme = "crank-nicolson" if o["scheme"] == "rannacher" else o["scheme"]
         coupling = "predictor" if o["coupling"] in ("auto", "picard") else o["coupling"]
         damped = o["rannacher_steps"] if o["scheme"] in ("rannacher", "tr-bdf2") else 0
-        return moving_wall.solve_cells(
+        return moving_wall_estimate.solve_cells(
             self,
             o["n_p"],
             o["n_steps"],

@@ -10,7 +10,8 @@ import numpy as np
 
 from persson_fp.results.solution import SolverError
 from persson_fp.solvers.engine import fluxes as engine
-from persson_fp.solvers.engine.moving_wall import MovingWall, finish, run_pair
+from persson_fp.solvers.engine.estimate import finish, run_pair
+from persson_fp.solvers.engine.moving_wall import MovingWall
 
 __all__ = ["solve_lines", "solve_lines_cells"]
 
