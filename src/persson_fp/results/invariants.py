@@ -104,6 +104,26 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
             )
         )
 
+    # 2b. mass balance: A* from the PDF against 1 - (what the walls absorbed), where the solver kept the wall fluxes
+    #     (fv, the engine); the far wall's loss is allowed, being reported (info["far_wall_mass"]) and estimated
+    flux = getattr(sol, "contact_area_flux_all", None)
+    if flux is not None:
+        plastic = sol.plastic_area_all if sol.plastic_area_all is not None else 0.0
+        far = float(sol.info.get("far_wall_mass") or 0.0)
+        with np.errstate(invalid="ignore"):
+            gap = np.abs(A - plastic - flux) if getattr(sol.problem, "hardness", None) is None else np.abs(A - flux)
+        gap = np.nan_to_num(gap, nan=np.inf)
+        checks["mass_balance"] = float(np.max(gap, initial=0.0))
+        if checks["mass_balance"] > far + MASS_BALANCE_TOL:
+            i, j = np.unravel_index(np.argmax(gap), gap.shape)
+            breaches.append(
+                (
+                    "mass_balance",
+                    f"A* = {A[i, j]:.6g} but 1 - (absorbed at the walls) = {flux[i, j]:.6g} at {where(i, j)} "
+                    f"(off by {gap[i, j]:.3e} > the far-wall loss {far:.3e} + {MASS_BALANCE_TOL:.0e})",
+                )
+            )
+
     # 3. load balance, or for general coefficients the first-moment law the solver integrated alongside
     #    (d/dzeta int p P dp = int B1 P dp - p_max J(p_max): info["load_law"], what the load must be at each station)
     law = sol.info.get("load_law")
@@ -168,6 +188,9 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
         warnings.warn(text, RuntimeWarning, stacklevel=6)
     return checks
 
+
+MASS_BALANCE_TOL = 1e-8
+"""Allowed |A* - (1 - absorbed)| beyond the reported far-wall loss (round-off of the flux accumulation)."""
 
 NEGLIGIBLE_MASS = 1e-13
 """A negative part of P0 with less mass than this (a fraction of the nominal area) is round-off, whatever its
