@@ -157,3 +157,33 @@ def test_budgets_are_respected_on_the_tol_path():
     with pytest.raises((pf.SolverError, ValueError), match="max_time"):
         pf.solve(gen, method="mol", tol=1e-7, max_time=0.3)
     assert time.perf_counter() - t0 < 5.0
+
+
+def _cells(pr, z):
+    """Exact cell averages of the image solution (normal CDF differences, written here) on 400 cells."""
+    edges = np.linspace(0.0, pr.p_max(10.0), 401)
+    s = np.sqrt(np.asarray(pr.V(z)))[:, None, None]
+    pb = pr.p_bar[None, :, None]
+    F = ndtr((edges - pb) / s) - ndtr((edges + pb) / s)
+    return edges, np.diff(F, axis=-1) / np.diff(edges)
+
+
+def test_mass_and_moment_law_breaches_are_named():
+    """A* against 1 - absorbed (mass balance) and, for general coefficients, the load against info['load_law']."""
+    from persson_fp.results.solution import Solution
+
+    pr = REF
+    z = np.array([8.0, 128.0])
+    edges, P = _cells(pr, z)
+    A = P.sum(axis=-1) * np.diff(edges)[0]
+    mid, w = 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
+    ok = Solution.build("cells", pr, z, mid, P, w, "cell", 0.0, contact_area_flux=A)
+    assert ok.info["checks"]["mass_balance"] < 1e-14
+    with pytest.raises(pf.SolverError, match="mass_balance"):
+        Solution.build("cells", pr, z, mid, P, w, "cell", 0.0, contact_area_flux=A - 1e-3)
+    gen = pf.FokkerPlanckProblem(PSD, p_bar=PB, B2=lambda p, zz: PSD.dV_dzeta(zz) + 0 * p)
+    law = np.full((2, 1), PB)
+    good = Solution.build("cells", gen, z, mid, P, w, "cell", 0.0, info={"load_law": law})
+    assert good.info["checks"]["load_law"] == "first-moment law"
+    with pytest.raises(pf.SolverError, match="first-moment law"):
+        Solution.build("cells", gen, z, mid, P, w, "cell", 0.0, info={"load_law": 1.2 * law})
