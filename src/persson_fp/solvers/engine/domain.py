@@ -45,8 +45,16 @@ def coefficient_domain(problem, k: float) -> tuple[float, dict]:
     p = np.linspace(0.0, cap, 513)
     B1 = np.empty((z.size, p.size))
     B2 = np.empty((z.size, p.size))
-    for i, zi in enumerate(z):
-        B1[i], B2[i] = problem.coefficients(p, float(zi))
+    limited = None
+    try:
+        for i, zi in enumerate(z):
+            B1[i], B2[i] = problem.coefficients(p, float(zi))
+    except ValueError as err:  # coefficients defined only on a smaller range: probe (and cap) the homogenised one
+        limited = str(err)
+        cap = hom
+        p = np.linspace(0.0, cap, 513)
+        for i, zi in enumerate(z):
+            B1[i], B2[i] = problem.coefficients(p, float(zi))
     T = np.trapezoid(B2, z, axis=0)  # (p,): variance collected at fixed p over the whole range
     # y(p) from p_bar outwards (midpoint rule per probe cell; T = 0 blocks the way: y jumps to infinity)
     Tm = 0.5 * (T[1:] + T[:-1])
@@ -80,6 +88,7 @@ def coefficient_domain(problem, k: float) -> tuple[float, dict]:
         "diffusion_reach": p_diff - pbm,
         "drift_reach": drift,
         "capped": bool(capped),
+        **({"probe_limited": limited} if limited else {}),
         "rule": "y(p) = int dp / sqrt(int B2 dzeta) = k_domain, plus int max(B1, 0) dzeta",
     }
     return float(p_end), info
