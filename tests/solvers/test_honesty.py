@@ -12,8 +12,9 @@ The references are written here, not taken from the engine:
   :math:`p_V(x, y) = \frac{1}{2V}\sqrt{x/y}\,e^{-(x+y)/2V} I_1(\sqrt{xy}/V)` (Revuz & Yor, Continuous Martingales
   and Brownian Motion, Ch. XI) -- exact for the problem on p > 0 as long as the wall at p = 0 (X = 16 p_bar^2) has
   not been reached: the loads are chosen so that the free density's mass below it is < 1e-13 (checked).
-* **A constant hardness** -- :math:`B_2 = \kappa V'`, B1 = 0 between the absorbing walls 0 and sigma_Y: the strip's
-  image series with variance kappa V (its cell averages from the normal CDF, written out here).
+* **A constant hardness** -- the same B1 = mu B2 and zeta-dependent B2 between the absorbing walls 0 and sigma_Y: the
+  strip's image series in the clock T, times the Girsanov factor :math:`e^{\mu(p - \bar p) - \mu^2T/2}` of the drift
+  (its cell averages from the normal CDF after completing the square, written out here).
 
 Every result is compared by its L1 error of P0 and its contact-area error at every station with its own estimate
 (``sol.error_estimate``): none may be more than 2x over it, and a ``tol=`` result none over ``tol``.  The default
@@ -106,26 +107,42 @@ def _besq_case(rng):
 
 def _strip_case(rng):
     kappa = float(rng.uniform(0.5, 2.0))
+    a = float(rng.choice([0.0, rng.uniform(0.2, 0.8)]))
+    omega = float(rng.uniform(1.0, 4.0))
     ratio = float(rng.uniform(0.3, 1.5))
     p_bar = ratio * np.sqrt(kappa * V_MAX)
     sigma = p_bar + float(rng.uniform(0.5, 3.0)) * np.sqrt(kappa * V_MAX)
+    mu = float(rng.choice([0.0, rng.uniform(-1.5, 1.5)])) / np.sqrt(kappa * V_MAX)
     dV = PSD.dV_dzeta
 
     def B2(p, z):
-        return np.full(np.shape(p), kappa * float(dV(z)))
+        return np.full(np.shape(p), kappa * float(dV(z)) * (1.0 + a * np.sin(omega * np.log(z))))
+
+    def B1(p, z):
+        return mu * B2(p, z)
 
     def exact(edges, z):
-        T = kappa * float(PSD.V(z))
+        """Strip images with drift (Girsanov): P = sum_k [e^{mu (c1 - x)} phi_T(y - c1 - mu T) - (c1 -> c2)],
+        c1 = x + 2k sigma, c2 = -x + 2k sigma, x = p_bar; T the clock int B2 dzeta."""
+        lz = np.log(z)
+        T = quad(lambda u: kappa * float(dV(np.exp(u))) * (1 + a * np.sin(omega * u)) * np.exp(u), 0.0, lz, limit=200)[
+            0
+        ]
         mass = np.zeros(edges.size - 1)
         area = 0.0
-        for k in range(-30, 31):  # images at +-p_bar + 2k sigma, alternating sign
-            mass += _normal_cdf_avg(edges, p_bar + 2 * k * sigma, T) - _normal_cdf_avg(edges, -p_bar + 2 * k * sigma, T)
+        sT = np.sqrt(T)
+        for k in range(-30, 31):
             for c, sgn in ((p_bar + 2 * k * sigma, 1.0), (-p_bar + 2 * k * sigma, -1.0)):
-                area += sgn * (ndtr((sigma - c) / np.sqrt(T)) - ndtr(-c / np.sqrt(T)))
+                wgt = sgn * np.exp(mu * (c - p_bar))
+                m = c + mu * T
+                mass += wgt * _normal_cdf_avg(edges, m, T)
+                area += wgt * (ndtr((sigma - m) / sT) - ndtr(-m / sT))
         return mass, area
 
-    label = f"strip kappa={kappa:.2f} ratio={ratio:.2f} sigma/p_bar={sigma / p_bar:.2f}"
-    return pf.FokkerPlanckProblem(PSD, p_bar=p_bar, B2=B2, hardness=sigma), exact, label, None
+    label = f"strip kappa={kappa:.2f} a={a:.2f} mu*sqrt(kV)={mu * np.sqrt(kappa * V_MAX):.2f} ratio={ratio:.2f} "
+    label += f"sigma/p_bar={sigma / p_bar:.2f}"
+    kw = {"B2": B2, "B1": B1 if mu != 0.0 else None}
+    return pf.FokkerPlanckProblem(PSD, p_bar=p_bar, hardness=sigma, **kw), exact, label, None
 
 
 FLOOR = 1e-12
