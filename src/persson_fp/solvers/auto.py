@@ -16,8 +16,11 @@ r"""``method="auto"`` and ``tol=``: ask for an accuracy, not a method.
 (A*, and A_el, A_pl with a hardness) at every output station.  With a named method, ``tol`` chooses the
 resolution the same way (fv: steps and cells from its error model; mol: ``rtol`` and the grid; sines: the series
 truncation) and the same check follows.  Up to ``MAX_REFINE`` refinements; if ``tol`` is still not met, a
-:class:`~persson_fp.SolverError` names the best error reached.  ``sol.info["auto"]`` records the choice, why,
-every attempt, the estimate and (with a closed form) the true error.
+:class:`~persson_fp.SolverError` names the best error reached.  On the front-fixed engine the first attempt puts at
+least ``_CELLS_PER_WIDTH`` cells across the PDF's width (never below what the engine accepts), an attempt whose
+result breaks an invariant is refined rather than returned, a far-wall loss above tol/4 grows ``k_domain``, and
+``max_memory``/``max_time`` bound every attempt and (``max_time``) the whole refinement.  ``sol.info["auto"]``
+records the choice, why, every attempt, the estimate and (with a closed form) the true error.
 """
 
 from __future__ import annotations

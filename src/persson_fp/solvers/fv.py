@@ -180,9 +180,9 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
         Steps between stability checks (NaN, mass growth, max ``|P0|`` growth; the l2 norm of P0 on the
         "dst" path).
     tol : float, optional
-        Moving yield wall (a scale-dependent hardness) only: raise :class:`~persson_fp.SolverError` when the
-        Richardson error estimate of the areas or the load residual exceeds ``tol`` (the estimate is always in
-        ``info["error_estimate"]``).
+        Moving yield wall and general coefficients only: raise :class:`~persson_fp.SolverError` when the error
+        estimate of the areas (Richardson, plus the start-up and far-wall parts for general coefficients) or the
+        load residual beyond its estimate exceeds ``tol`` (the estimate is always in ``info["error_estimate"]``).
     linalg : str, default "auto"
         "dst": the spectral fast path (the same discrete solution to round-off, see the module
         docstring); "banded": the tridiagonal solves (readable reference); "auto": "dst" whenever
