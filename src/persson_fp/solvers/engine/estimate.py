@@ -24,7 +24,7 @@ from persson_fp.theory.fudge import NoFudge
 __all__ = ["richardson", "solve_cells", "run_pair", "finish", "STATION_FLOOR", "LARGE_ESTIMATE"]
 
 STATION_FLOOR = 0.1
-"""No station's error estimate is below this fraction of the largest over the stations (see :func:`finish`)."""
+"""General coefficients: no station's error estimate is below this fraction of its neighbours' (:func:`finish`)."""
 LARGE_ESTIMATE = 1e-2
 """An error estimate of the areas above this is warned about (a RuntimeWarning; the result is still returned)."""
 
@@ -138,12 +138,15 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
         # A* = A_el = 1 - A_non - A_far: Solution reads the A* estimate from the A_non one, so it holds both
         est["noncontact_area"] = np.maximum(est["noncontact_area"], est["elastic_area"])
         parts["far_wall"] = float(np.max(far))
-    # a difference that changes sign between stations passes through 0 where the error need not: no station's
-    # estimate is below STATION_FLOOR x the largest over the stations (per load)
-    for q in est:
-        if np.all(np.isnan(est[q])):
-            continue
-        est[q] = np.maximum(est[q], STATION_FLOOR * np.nanmax(est[q], axis=0, keepdims=True))
+    # general coefficients: a difference that changes sign between stations passes through 0 where the error need
+    # not; no station's estimate is below STATION_FLOOR x its neighbours' (per load)
+    if pr.general:
+        for q in est:
+            e = est[q]
+            if np.all(np.isnan(e)) or e.shape[0] < 2:
+                continue
+            nb = np.maximum(np.vstack([e[1:2], e[:-1]]), np.vstack([e[1:], e[-2:-1]]))
+            est[q] = np.maximum(e, STATION_FLOOR * nb)
     area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
     area_residual = float(np.max(np.abs(area_sum - 1.0)))
     # the first-moment law: F_el + s a = L0 + int int b1 P dp dV (the wall at p = 0 carries no load; without a
