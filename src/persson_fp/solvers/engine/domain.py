@@ -8,7 +8,8 @@ domain follows the coefficients sampled on a probe grid in p and zeta:
 * **diffusion** -- the total variance a walker would collect while sitting at p,
   :math:`T(p) = \int_1^{\zeta_{max}} B_2(p, \zeta)\,d\zeta`, defines the Lamperti-like distance
   :math:`y(p) = \int_{\bar p}^{p} dp'/\sqrt{T(p')}` (for :math:`B_2 = dV/d\zeta`: :math:`(p - \bar p)/\sqrt V`);
-  the far end of the diffusion is where :math:`y = k` (``k_domain``), the homogenised rule when B2 = dV/dzeta;
+  the far end of the diffusion is where :math:`y = 0.7k` (``k_domain``; ``Y_FRACTION``), but never closer than
+  :math:`\bar p + k\sqrt{T(\bar p)}` (the homogenised rule when B2 = dV/dzeta);
 * **drift** -- plus the distance the largest outward drift can carry the PDF,
   :math:`R = \int \max_p \max(B_1, 0)\,d\zeta`.
 
@@ -23,6 +24,10 @@ import numpy as np
 
 __all__ = ["coefficient_domain", "CAP"]
 
+Y_FRACTION = 0.7
+"""The diffusion's far end is where y = Y_FRACTION x k_domain, but never closer than k_domain sqrt(T(p_bar)) (the
+Gaussian tail of the diffusion at p_bar): a diffusion that grows with p has an exponential, not a Gaussian, tail in
+y (measured: the squared Bessel case needs y ~ 0.6 k for 1e-14), and what a short domain loses is measured anyway."""
 CAP = 8.0
 """The diffusive part of the domain is at most CAP x the homogenised width k sqrt(V(zeta_max))."""
 
@@ -62,16 +67,18 @@ def coefficient_domain(problem, k: float) -> tuple[float, dict]:
         dy = np.where(Tm > 0, np.diff(p) / np.sqrt(np.maximum(Tm, 0.0)), np.inf)
     start = int(np.searchsorted(p, pbm))
     y = np.concatenate(([0.0], np.cumsum(dy[start:])))
-    reach = np.flatnonzero(y >= k)
+    target = Y_FRACTION * k
+    reach = np.flatnonzero(y >= target)
     capped = reach.size == 0
     if capped:
         p_diff = cap
     else:
         j = int(reach[0])  # y crosses k inside probe cell start + j - 1: interpolate
         lo = p[start + j - 1]
-        frac = 0.0 if not np.isfinite(dy[start + j - 1]) else (k - y[j - 1]) / max(y[j] - y[j - 1], 1e-300)
+        frac = 0.0 if not np.isfinite(dy[start + j - 1]) else (target - y[j - 1]) / max(y[j] - y[j - 1], 1e-300)
         p_diff = float(lo + np.clip(frac, 0.0, 1.0) * (p[1] - p[0]))
-    p_diff = max(p_diff, pbm + 0.5 * k * s, hom if problem.B2_fun is None else 0.0)
+    # the Gaussian tail of the diffusion at p_bar itself (the homogenised rule with the local clock): a floor
+    p_diff = max(p_diff, pbm + k * float(np.sqrt(max(np.interp(pbm, p, T), 0.0))))
     drift = 0.0
     for _ in range(3):  # the drift seen on the domain it makes (fixed point; B1 > 0 at larger p widens it)
         inside = p <= p_diff + drift
