@@ -96,6 +96,6 @@ def coefficient_domain(problem, k: float) -> tuple[float, dict]:
         "drift_reach": drift,
         "capped": bool(capped),
         **({"probe_limited": limited} if limited else {}),
-        "rule": "y(p) = int dp / sqrt(int B2 dzeta) = k_domain, plus int max(B1, 0) dzeta",
+        "rule": "y(p) = int dp / sqrt(int B2 dzeta) = 0.7 k_domain (>= k_domain sqrt(T(p_bar))) + int max(B1, 0) dzeta",
     }
     return float(p_end), info
