@@ -47,7 +47,7 @@ for name, kw in models.items():
         results[name] = (pf.exact(ref, zeta).contact_area, None)
     else:
         fp = pf.FokkerPlanckProblem(psd, p_bar=p_bar, **kw)
-        sol = pf.solve(fp, method="fv", n_p=400, n_steps=400, zeta_out=zeta)
+        sol = pf.solve(fp, method="fv", n_p=800, n_steps=400, zeta_out=zeta)
         results[name] = (sol.contact_area, sol.error_estimate["contact_area"][:, 0], sol)
     print(f"{name:42s} A*(128) = {float(results[name][0][-1]):.5f}")
 

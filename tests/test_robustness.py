@@ -264,8 +264,8 @@ def test_overflow_and_odd_input_are_value_errors(make, match):
     [
         ("fv", {"n_p": 10**6}, 1, "GiB of memory"),
         ("fv", {"n_p": 10**8}, 1, "GiB of memory"),
-        ("mol", {"n_p": 10**6}, 1, "GiB of memory"),
-        ("mol", {}, 10**4, "GiB of memory"),
+        ("mol", {"n_p": 10**7}, 1, "GiB of memory"),
+        ("mol", {"n_p": 10**5}, 10**3, "GiB of memory"),
         ("monte-carlo", {"n_p": 10**9}, 1, "GiB of memory"),
         ("monte-carlo", {"n_walkers": 10**9}, 1, r"s \(estimate\)"),
     ],

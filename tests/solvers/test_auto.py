@@ -87,8 +87,8 @@ def test_unreachable_tol_raises(monkeypatch):
 
     monkeypatch.setattr(auto, "MAX_REFINE", 0)
     with pytest.raises(pf.SolverError, match="not met after"):
-        pf.solve(_general(), method="fv", tol=1e-9, n_p=20, n_steps=20)
+        pf.solve(_general(), method="fv", tol=1e-9, n_p=40, n_steps=20)
     monkeypatch.setattr(auto, "MAX_REFINE", 4)
     monkeypatch.setattr(auto, "MAX_CELLS", 100)
     with pytest.raises(pf.SolverError, match="would need more than 100"):
-        pf.solve(_general(), method="fv", tol=1e-9, n_p=20, n_steps=20)
+        pf.solve(_general(), method="fv", tol=1e-9, n_p=40, n_steps=20)

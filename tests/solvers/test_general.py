@@ -73,7 +73,7 @@ def _run(n, steps=None, rtol=None):
     """Error (max over cells of the cell averages of P) at V_end, and the absorbed mass at p = 0."""
     pr = _problem()
     L = _problem.L
-    mw = MovingWall(pr, n, 10.0)
+    mw = MovingWall(pr, n, 10.0, p_end=L)  # the manufactured solution lives on [0, L]
     V0, V1 = 0.1 * T, 0.6 * T
     y0 = np.zeros((1, n + 1))
     y0[0, :n] = L * _cell_avg(lambda p: _P(p, V0, L), n, L)  # w = L P

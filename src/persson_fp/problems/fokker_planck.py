@@ -119,7 +119,8 @@ class FokkerPlanckProblem(ContactProblem):
         Raises
         ------
         ValueError
-            A non-finite value, a negative B2 or a coefficient that is not vectorised, naming where.
+            A non-finite, complex or (B2) negative value, a coefficient that is not vectorised (wrong shape) or
+            that raises, naming the coefficient and the (p, zeta) where.
         """
         p = np.asarray(p, dtype=float)
         z = float(zeta)
@@ -131,17 +132,7 @@ class FokkerPlanckProblem(ContactProblem):
             if f is None:
                 val = default()
             else:
-                try:
-                    val = np.asarray(f(p, z), dtype=float)
-                except (TypeError, ValueError, ArithmeticError) as err:
-                    raise ValueError(f"{name}(p, zeta) could not be evaluated at zeta = {z:.6g}: {err}") from None
-                if val.shape != p.shape:
-                    try:
-                        val = np.broadcast_to(val, p.shape).astype(float)
-                    except ValueError:
-                        raise ValueError(
-                            f"{name}(p, zeta) must be vectorised in p (shape {p.shape}), got shape {val.shape}"
-                        ) from None
+                val = _evaluate(name, f, p, z)
             bad = ~np.isfinite(val)
             if name == "B2":
                 bad |= val < 0
@@ -160,3 +151,36 @@ class FokkerPlanckProblem(ContactProblem):
         ]
         base = super().__repr__()
         return base.replace("ContactProblem(", "FokkerPlanckProblem(", 1)[:-1] + ", " + ", ".join(names) + ")"
+
+
+def _evaluate(name: str, f, p: np.ndarray, z: float) -> np.ndarray:
+    """``f(p, z)`` as a real float array of the shape of ``p``, or a ``ValueError`` naming ``name`` and where."""
+    lo, hi = (float(np.min(p)), float(np.max(p))) if p.size else (0.0, 0.0)
+    where = f"p in [{lo:.6g}, {hi:.6g}], zeta = {z:.6g}"
+    try:
+        raw = f(p, z)
+    except Exception as err:  # any failure of a user callable is bad input, reported with where it happened
+        raise ValueError(f"{name}(p, zeta) could not be evaluated at {where}: {type(err).__name__}: {err}") from None
+    try:
+        arr = np.asarray(raw)
+    except Exception as err:
+        raise ValueError(f"{name}(p, zeta) returned {type(raw).__name__}, not an array of numbers ({where})") from err
+    if arr.dtype.kind == "c":
+        imag = np.abs(np.imag(arr))
+        i = int(np.argmax(imag)) if imag.size else 0
+        at = f"p = {float(p.flat[i]):.6g}, zeta = {z:.6g}" if arr.shape == p.shape and p.size else where
+        value = arr.flat[i] if arr.size else "an empty array"
+        raise ValueError(f"{name} must be real: {name}({at}) = {value!r} is complex")
+    if arr.dtype.kind not in "biuf":
+        raise ValueError(f"{name}(p, zeta) must return real numbers, got dtype {arr.dtype} at {where}")
+    arr = arr.astype(float)
+    if arr.shape != p.shape:
+        try:
+            if arr.ndim > p.ndim:
+                raise ValueError
+            arr = np.broadcast_to(arr, p.shape).astype(float)
+        except ValueError:
+            raise ValueError(
+                f"{name}(p, zeta) must be vectorised in p (shape {p.shape}), got shape {arr.shape} at {where}"
+            ) from None
+    return arr

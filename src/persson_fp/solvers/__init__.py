@@ -172,13 +172,23 @@ def solve(
         from persson_fp.solvers.auto import solve_auto
 
         with _limit(n_threads):
-            return solve_auto(problem, zeta_out, 1e-6 if tol is None else tol, **options)
+            return solve_auto(
+                problem, zeta_out, 1e-6 if tol is None else tol, max_memory=max_memory, max_time=max_time, **options
+            )
     if tol is not None and isinstance(method, str) and method in ("fv", "mol"):
         from persson_fp.solvers.auto import solve_to_tol
         from persson_fp.solvers.base import check_float
 
         with _limit(n_threads):
-            return solve_to_tol(problem, method, zeta_out, check_float(tol, "tol", 0.0, 1e-1), **options)
+            return solve_to_tol(
+                problem,
+                method,
+                zeta_out,
+                check_float(tol, "tol", 0.0, 1e-1),
+                max_memory=max_memory,
+                max_time=max_time,
+                **options,
+            )
     if tol is not None:
         options["tol"] = tol
     solver = get_solver(method)(

@@ -16,8 +16,11 @@ r"""``method="auto"`` and ``tol=``: ask for an accuracy, not a method.
 (A*, and A_el, A_pl with a hardness) at every output station.  With a named method, ``tol`` chooses the
 resolution the same way (fv: steps and cells from its error model; mol: ``rtol`` and the grid; sines: the series
 truncation) and the same check follows.  Up to ``MAX_REFINE`` refinements; if ``tol`` is still not met, a
-:class:`~persson_fp.SolverError` names the best error reached.  ``sol.info["auto"]`` records the choice, why,
-every attempt, the estimate and (with a closed form) the true error.
+:class:`~persson_fp.SolverError` names the best error reached.  On the front-fixed engine the first attempt puts at
+least ``_CELLS_PER_WIDTH`` cells across the PDF's width (never below what the engine accepts), an attempt whose
+result breaks an invariant is refined rather than returned, a far-wall loss above tol/4 grows ``k_domain``, and
+``max_memory``/``max_time`` bound every attempt and (``max_time``) the whole refinement.  ``sol.info["auto"]``
+records the choice, why, every attempt, the estimate and (with a closed form) the true error.
 """
 
 from __future__ import annotations
@@ -41,6 +44,10 @@ _C_FRONT = 2e-2
 _C_GENERAL = 50.0
 """General coefficients on [0, p_max] (a wider domain in units of the PDF's width): estimate ~ _C_GENERAL / n^2
 (about 40 measured on the scene of benchmarks/auto.py)."""
+_CELLS_PER_WIDTH = 4.0
+"""The front-fixed engine's first attempt puts at least this many cells across the PDF's width sqrt(V) at the first
+station (the engine itself refuses fewer than one; with one or two a moving wall rings: a dip of -0.19 x the peak
+measured on the README's moving-wall scene at 66 cells)."""
 _C_FV_STEPS = 0.06
 """fv TR-BDF2 (compact4, graded steps), closed-form scenes: L1 ~ _C_FV_STEPS / n_steps^2 (speed_accuracy.md)."""
 _C_FV_CELLS = 6e-6 * 200.0**4
@@ -61,21 +68,35 @@ def _errors(sol):
     return L1, area, "estimate (|run - half-resolution run|)"
 
 
-def _attempt(problem, method, zeta_out, options):
+def _attempt(problem, method, zeta_out, options, budget):
     from persson_fp.solvers import get_solver
 
-    return get_solver(method)(problem, zeta_out=zeta_out, **options).run()
+    return get_solver(method)(problem, zeta_out=zeta_out, **budget, **options).run()
 
 
-def _first_options(problem, method, tol):
+def _min_engine_cells(problem, method, zeta_out, options) -> int:
+    """Cells for the front-fixed engine's first attempt: ``_CELLS_PER_WIDTH`` x the fewest it accepts, even."""
+    from persson_fp.solvers import get_solver
+    from persson_fp.solvers.engine.moving_wall import min_cells
+
+    k = options.get("k_domain", get_solver(method).OPTIONS.get("k_domain", 10.0))
+    z = problem.zeta_max if zeta_out is None else zeta_out
+    V_st = np.atleast_1d(np.asarray(problem.V(np.atleast_1d(np.asarray(z, dtype=float))), dtype=float))
+    return 2 * int(math.ceil(_CELLS_PER_WIDTH * min_cells(problem, V_st, k) / 2))
+
+
+def _first_options(problem, method, tol, zeta_out=None, options=None):
     if method == "sines":
         return {"tol": min(max(tol * 1e-2, 1e-14), 1e-2)}
-    if method == "mol":
-        return {"rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
-    if not problem.has_closed_form:
+    if not problem.has_closed_form:  # the front-fixed engine (fv, and mol's lines on the same fluxes)
         C = _C_GENERAL if problem.general else _C_FRONT
         n = 2 * int(np.clip(math.ceil(math.sqrt(C / tol) / 2), 25, 1600))  # even: the partner has n/2
+        n = max(n, _min_engine_cells(problem, method, zeta_out, options or {}))
+        if method == "mol":
+            return {"n_p": n, "rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
         return {"n_p": n, "n_steps": n}
+    if method == "mol":
+        return {"rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
     n_steps = int(np.clip(math.ceil(math.sqrt(2.0 * _C_FV_STEPS / tol)), 20, 20000))
     n_p = int(np.clip(math.ceil((2.0 * _C_FV_CELLS / tol) ** 0.25), 50, 20000))
     return {"n_p": n_p, "n_steps": n_steps}
@@ -88,7 +109,8 @@ def _refine(method, opts, problem, ratio):
         out["tol"] = max(opts["tol"] * 1e-2, 1e-15)
     elif method == "mol":
         out["rtol"] = max(opts["rtol"] * 1e-2, 1e-13)
-        out["n_p"] = int(math.ceil(1.5 * (opts.get("n_p") or 200)))
+        f = 1.5 if problem.has_closed_form else float(np.clip(1.2 * math.sqrt(ratio), 1.5, 8.0))
+        out["n_p"] = 2 * int(math.ceil(f * (opts.get("n_p") or 200) / 2))
     else:
         f = float(np.clip(1.2 * math.sqrt(ratio), 1.5, 8.0))  # second order in both (front-fixed) or in steps
         out["n_steps"] = 2 * int(math.ceil(opts["n_steps"] * f / 2))
@@ -96,13 +118,45 @@ def _refine(method, opts, problem, ratio):
     return out
 
 
-def solve_to_tol(problem, method: str, zeta_out, tol: float, why: str = "", **options):
-    """Solve with ``method`` at a resolution chosen for ``tol``, check the error, refine until it meets ``tol``."""
+def solve_to_tol(
+    problem, method: str, zeta_out, tol: float, why: str = "", *, max_memory=None, max_time=None, **options
+):
+    """Solve with ``method`` at a resolution chosen for ``tol``, check the error, refine until it meets ``tol``.
+
+    ``max_memory`` / ``max_time`` bound every attempt (the solver's own estimate refuses one that would exceed
+    them) and ``max_time`` also the whole refinement: a refinement whose predicted time (the last attempt's, scaled
+    by the growth of n_p x n_steps) would overrun it is refused with a :class:`~persson_fp.SolverError`."""
     t0 = time.perf_counter()
-    opts = {**_first_options(problem, method, tol), **options}
+    opts = {**_first_options(problem, method, tol, zeta_out, options), **options}
+    budget = {"max_memory": max_memory, "max_time": max_time}
     attempts = []
+    _check_cells(method, tol, opts, problem, attempts, math.inf, math.inf, "no attempt yet")
     for k in range(MAX_REFINE + 1):
-        sol = _attempt(problem, method, zeta_out, opts)
+        if max_time is not None and attempts:
+            prev = attempts[-1]
+            grow = _work(opts) / max(_work(prev["options"]), 1.0)
+            predicted = prev["wall_time"] * grow
+            left = max_time - (time.perf_counter() - t0)
+            if predicted > left:
+                raise SolverError(
+                    f"{method}: tol = {tol:g} not met within max_time = {max_time:g} s (best: L1 {prev['L1']:.3e}, "
+                    f"area error {prev['area_error']:.3e}; the next refinement would take about {predicted:.3g} s, "
+                    f"{left:.3g} s are left); ask for a looser tol or a larger max_time"
+                )
+            budget["max_time"] = left
+        t_try = time.perf_counter()
+        try:
+            sol = _attempt(problem, method, zeta_out, opts, budget)
+        except SolverError as err:  # an invariant breached (e.g. ringing on a coarse grid): refine, unless the last
+            if k == MAX_REFINE or "max_time" in str(err):
+                raise
+            L1 = area = math.inf
+            kind = f"failed: {str(err)[:200]}"
+            attempts.append({"options": dict(opts), "L1": L1, "area_error": area, "wall_time": 0.0, "failed": kind})
+            attempts[-1]["wall_time"] = time.perf_counter() - t_try
+            opts = _refine(method, opts, problem, 16.0)
+            _check_cells(method, tol, opts, problem, attempts, L1, area, kind)
+            continue
         L1, area, kind = _errors(sol)
         attempts.append({"options": dict(opts), "L1": L1, "area_error": area, "wall_time": sol.wall_time})
         if L1 <= tol and area <= tol:
@@ -113,11 +167,15 @@ def solve_to_tol(problem, method: str, zeta_out, tol: float, why: str = "", **op
                 f"{area:.3e}, {kind}, with {opts}); ask for a looser tol or pass the resolution yourself"
             )
         opts = _refine(method, opts, problem, max(L1, area) / tol)
-        if max(opts.get("n_p") or 0, 0 if problem.has_closed_form else opts.get("n_steps", 0)) > MAX_CELLS:
-            raise SolverError(
-                f"{method}: tol = {tol:g} would need more than {MAX_CELLS} cells/steps (best so far: L1 {L1:.3e}, area "
-                f"error {area:.3e}, {kind}, with {attempts[-1]['options']}); ask for a looser tol"
-            )
+        far = sol.info.get("error_estimate", {}).get("parts", {}).get("far_wall", 0.0)
+        if far > 0.25 * tol:  # the far wall took mass that matters: grow the domain (and the cells with it)
+            from persson_fp.solvers import get_solver
+
+            k = float(opts.get("k_domain", get_solver(method).OPTIONS.get("k_domain", 10.0)))
+            opts["k_domain"] = 1.5 * k
+            opts["n_p"] = 2 * int(math.ceil(1.5 * opts["n_p"] / 2))
+            attempts[-1]["grow_domain"] = f"far-wall loss {far:.2e} > tol / 4: k_domain {k:g} -> {1.5 * k:g}"
+        _check_cells(method, tol, opts, problem, attempts, L1, area, kind)
     sol.info["auto"] = {
         "method": method,
         "why": why or f"method {method!r} asked for; resolution chosen for tol",
@@ -131,11 +189,27 @@ def solve_to_tol(problem, method: str, zeta_out, tol: float, why: str = "", **op
     return sol
 
 
-def solve_auto(problem, zeta_out=None, tol: float = 1e-6, **options):
+def _check_cells(method, tol, opts, problem, attempts, L1, area, kind) -> None:
+    """SolverError when the next attempt would need more than MAX_CELLS cells or steps (refused before it runs)."""
+    if max(opts.get("n_p") or 0, 0 if problem.has_closed_form else opts.get("n_steps") or 0) > MAX_CELLS:
+        best = attempts[-1]["options"] if attempts else opts
+        raise SolverError(
+            f"{method}: tol = {tol:g} would need more than {MAX_CELLS} cells/steps (best so far: L1 {L1:.3e}, area "
+            f"error {area:.3e}, {kind}, with {best}); ask for a looser tol"
+        )
+
+
+def _work(opts) -> float:
+    """Relative cost of an attempt: n_p x n_steps (or n_p alone where no steps are set)."""
+    return float(opts.get("n_p") or 200) * float(opts.get("n_steps") or 1)
+
+
+def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, max_time=None, **options):
     """``method="auto"``: the cheapest way to ``tol`` (module docstring)."""
     from persson_fp.solvers.base import check_float
 
     tol = check_float(tol, "tol", 0.0, 1e-1)
+    budget = {"max_memory": max_memory, "max_time": max_time}
     if options:
         raise TypeError(f"method 'auto' chooses the resolution itself; it takes only tol and zeta_out, got {options}")
     if problem.has_closed_form:
@@ -144,13 +218,13 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, **options):
             "at every tolerance measured in benchmarks/results)"
         )
         try:
-            return solve_to_tol(problem, "sines", zeta_out, tol, why=why)
+            return solve_to_tol(problem, "sines", zeta_out, tol, why=why, **budget)
         except (ValueError, SolverError) as err:
             why = f"the sine series could not serve this scene ({err}); finite volumes with a resolution for tol"
-            return solve_to_tol(problem, "fv", zeta_out, tol, why=why)
+            return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
     what = "a scale-dependent hardness" if problem.moving_wall else "general Fokker-Planck coefficients"
     why = (
         f"no closed form ({what}): finite volumes on the front-fixed engine, n cells and n steps from the "
         "measured error model C/n^2, checked by a half-resolution partner run"
     )
-    return solve_to_tol(problem, "fv", zeta_out, tol, why=why)
+    return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)

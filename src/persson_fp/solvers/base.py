@@ -139,8 +139,10 @@ MEMORY_MODELS = {
     # (options, n_loads, n_stations, with_fudge) -> bytes, fitted to tracemalloc peaks (reference problem)
     # fv: 85 MB at n_p = 2e4, 100 steps; 1.67 GB at 2000 steps (the trajectory of one load is kept)
     "fv": lambda o, nl, nz, f: 48.0 * o["n_p"] * (o["n_steps"] + 10) + 160.0 * o["n_p"] * nl,
-    # mol: 0.38 GB at n_p = 2e4, 1.8 GB at 8e4, 1.3 GB for 50 loads x 2000 points (dense output of BDF)
-    "mol": lambda o, nl, nz, f: 25e3 * o["n_p"] * nl,
+    # mol: ~600 B per point and load of a chunk (<= 250 loads), + dense blocks in zeta (benchmarks/mol_memory.py)
+    "mol": lambda o, nl, nz, f: (
+        600.0 * o["n_p"] * min(nl, 250) + 65536.0 + 24.0 * o["n_p"] ** 2 * nl * (f and o.get("variable") == "zeta")
+    ),
     # Chapman--Kolmogorov: 22 MB at n_p = 2e4 (banded kernel)
     "chapman-kolmogorov": lambda o, nl, nz, f: 1e3 * o["n_p"] * nl + 8.0 * o["n_p"] * nl * nz,
     # Monte Carlo: histograms (4 arrays per station and load), one chunk of temporaries, all walkers with S(A*)

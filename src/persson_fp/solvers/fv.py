@@ -86,7 +86,7 @@ import numpy as np
 
 from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
-from persson_fp.solvers.engine import moving_wall
+from persson_fp.solvers.engine import estimate as moving_wall_estimate
 from persson_fp.solvers.fv_operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
     _BDF2_A,
     _BDF2_B,
@@ -181,9 +181,9 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
         Steps between stability checks (NaN, mass growth, max ``|P0|`` growth; the l2 norm of P0 on the
         "dst" path).
     tol : float, optional
-        Moving yield wall (a scale-dependent hardness) only: raise :class:`~persson_fp.SolverError` when the
-        Richardson error estimate of the areas or the load residual exceeds ``tol`` (the estimate is always in
-        ``info["error_estimate"]``).
+        Moving yield wall and general coefficients only: raise :class:`~persson_fp.SolverError` when the error
+        estimate of the areas (Richardson, plus the start-up and far-wall parts for general coefficients) or the
+        load residual beyond its estimate exceeds ``tol`` (the estimate is always in ``info["error_estimate"]``).
     linalg : str, default "auto"
         "dst": the spectral fast path (the same discrete solution to round-off, see the module
         docstring); "banded": the tridiagonal solves (readable reference); "auto": "dst" whenever
@@ -475,7 +475,7 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
         scheme = "crank-nicolson" if o["scheme"] == "rannacher" else o["scheme"]
         coupling = "predictor" if o["coupling"] in ("auto", "picard") else o["coupling"]
         damped = o["rannacher_steps"] if o["scheme"] in ("rannacher", "tr-bdf2") else 0
-        return moving_wall.solve_cells(
+        return moving_wall_estimate.solve_cells(
             self,
             o["n_p"],
             o["n_steps"],

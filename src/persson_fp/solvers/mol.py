@@ -59,6 +59,7 @@ grows like n_p^2 (the stability study).
 from __future__ import annotations
 
 import gc
+import time
 
 import numpy as np
 import scipy.sparse as sp
@@ -421,6 +422,7 @@ class MethodOfLinesSolver(Solver):
         # in tau the Jacobian's P part is one Laplacian block per load, shared: factor it once per step
         blocks = (nl, m) if o["variable"] == "tau" else None
         solver = _ivp_march.make_solver(method, sysm.fun, sysm.t0, sysm.y0, t_end, blocks=blocks, **kw)
+        deadline = time.perf_counter() + self.max_time
         try:
             if sysm.augmented:
                 V_out = np.atleast_1d(pr.V(zeta_out)).astype(float)
@@ -432,13 +434,18 @@ class MethodOfLinesSolver(Solver):
                     return pr.fudge.S(A)
 
                 tau_st, P, steps = _ivp_march.march_own(
-                    solver, n + np.arange(nl), np.arange(n).reshape(nl, m), V_out, S_of, "mol"
+                    solver, n + np.arange(nl), np.arange(n).reshape(nl, m), V_out, S_of, "mol", deadline=deadline
                 )
                 tau_info = tau_st
             else:
-                Y, steps = _ivp_march.march_shared(solver, t_eval, "mol")
+                Y, steps = _ivp_march.march_shared(solver, t_eval, "mol", deadline=deadline)
                 P = Y.T.reshape(n_z, nl, m)
                 tau_info = t_eval if o["variable"] == "tau" else None
+        except _ivp_march.BudgetExceeded as err:
+            raise SolverError(
+                f"{err} (max_time = {self.max_time:.3g} s); use a coarser grid or a looser rtol, or pass a "
+                "larger max_time (seconds)"
+            ) from err
         except RuntimeError as err:
             raise SolverError(f"mol: solve_ivp failed ({err})") from err
 
@@ -462,7 +469,8 @@ class MethodOfLinesSolver(Solver):
         wq = quadrature_weights(o["n_p"], h, o["order"])
         plastic = None
         if pr.hardness is not None:  # the strip's load balance F_el + sigma A_pl = p_bar gives A_pl
-            plastic = (pr.p_bar - P_full @ (wq * p)) / float(pr.hardness.sigma(1.0))
+            # (clipped at 0: the quadrature error of F_el may push a vanishing A_pl a little below, -5e-8 measured)
+            plastic = np.maximum((pr.p_bar - P_full @ (wq * p)) / float(pr.hardness.sigma(1.0)), 0.0)
         return SolverOutput(p=p, P0=P_full, weights=wq, kind="point", info=info, plastic_area=plastic)
 
     def _solve_in_chunks(self) -> SolverOutput:

@@ -16,6 +16,7 @@ factorization ~7x and each solve ~25x slower (measured, 100 loads, 22800 unknown
 from __future__ import annotations
 
 import copy
+import time
 import weakref
 
 import numpy as np
@@ -105,13 +106,19 @@ def restrict(interp, rows):
     return out
 
 
-def _step(solver, name):
+class BudgetExceeded(RuntimeError):
+    """The march ran past its deadline (the solver's ``max_time``)."""
+
+
+def _step(solver, name, deadline=None):
     msg = solver.step()
     if solver.status == "failed":
         raise RuntimeError(f"{name}: the integrator failed ({msg})")
+    if deadline is not None and time.perf_counter() > deadline:
+        raise BudgetExceeded(f"{name}: max_time exceeded at t = {solver.t:.6g}")
 
 
-def march_shared(solver, t_out, name: str = "solve_ivp"):
+def march_shared(solver, t_out, name: str = "solve_ivp", deadline=None):
     """Step to the end and return y at the shared stations ``t_out`` (increasing; the last = t_bound).
 
     Returns (Y of shape (n, len(t_out)), number of steps).  The last station is the step point itself.
@@ -122,7 +129,7 @@ def march_shared(solver, t_out, name: str = "solve_ivp"):
     while k < t_out.size:
         if solver.status == "finished":
             raise RuntimeError(f"{name}: reached {solver.t:.6g} before the station {t_out[k]:.6g}")
-        _step(solver, name)
+        _step(solver, name, deadline)
         steps += 1
         j = k
         while j < t_out.size and t_out[j] <= solver.t:
@@ -137,7 +144,7 @@ def march_shared(solver, t_out, name: str = "solve_ivp"):
     return Y, steps
 
 
-def march_own(solver, V_rows, P_rows, V_out, S_of, name: str = "solve_ivp", newton_max: int = 20):
+def march_own(solver, V_rows, P_rows, V_out, S_of, name: str = "solve_ivp", newton_max: int = 20, deadline=None):
     """Step until every load j has passed ``V_out[-1]`` in its own unknown ``y[V_rows[j]]`` (increasing in t).
 
     At each crossing of a station ``V_out[k]`` by load j, the time is refined by Newton's method on the step
@@ -156,7 +163,7 @@ def march_own(solver, V_rows, P_rows, V_out, S_of, name: str = "solve_ivp", newt
         if solver.status == "finished":
             raise RuntimeError(f"{name}: reached t = {solver.t:.6g} before every load's last station")
         t_old = solver.t
-        _step(solver, name)
+        _step(solver, name, deadline)
         steps += 1
         V_new = solver.y[V_rows]
         crossed = np.flatnonzero((nxt < n_z) & (V_new >= V_out[np.minimum(nxt, n_z - 1)]))

@@ -10,7 +10,8 @@ import numpy as np
 
 from persson_fp.results.solution import SolverError
 from persson_fp.solvers.engine import fluxes as engine
-from persson_fp.solvers.engine.moving_wall import MovingWall, finish, run_pair
+from persson_fp.solvers.engine.estimate import finish, run_pair
+from persson_fp.solvers.engine.moving_wall import MovingWall
 
 __all__ = ["solve_lines", "solve_lines_cells"]
 
@@ -34,7 +35,7 @@ def solve_lines(
         y0w, A_non0, A_pl0 = mw.start(V0)
     else:  # a given start, e.g. a manufactured solution
         y0w, A_non0, A_pl0 = np.array(y0, dtype=float), np.zeros(m), np.asarray(y0, dtype=float)[:, -1]
-    k = n + 2  # unknowns per load: w (n), A_pl, A_non
+    k = n + 3  # unknowns per load: w (n), A_pl, A_non, the drift's load int int b1 P dp dV (first-moment law)
 
     def split(y):
         Y = y.reshape(m, k)
@@ -43,7 +44,12 @@ def solve_lines(
     def total_area(wa):
         return np.clip(wa[:, :n].sum(axis=1) * h + wa[:, n], 0.0, 1.0)
 
+    calls = [0]
+
     def fun(V, y):
+        calls[0] += 1
+        if calls[0] % 64 == 0:
+            mw.check_deadline(V)
         wa, _ = split(y)
         S_now = np.ones(m) if mw.no_fudge else S(total_area(wa))
         c = mw.coefficients(V, S_now)
@@ -52,6 +58,7 @@ def solve_lines(
         if source is not None:
             out[:, : n + 1] += source(V)
         out[:, n + 1] = engine.outflux_low(c, wa, h)
+        out[:, n + 2] = mw.drift_rate(V, wa)
         return out.ravel()
 
     def jac(V, y):
@@ -68,10 +75,13 @@ def solve_lines(
             J[: n + 1, : n + 1] = Lj
             D_wall = np.atleast_2d(c.D if c.D_cells is None else c.D_cells)[j, 0]
             J[n + 1, 0] = -engine.AbsorbingWall.flux_coefficient(float(D_wall), h)
+            if mw.general:
+                J[n + 2, :n] = mw.drift_cells(V) * h
             blocks.append(J.tocsr())
         return sp.block_diag(blocks, format="csr")
 
-    y0 = np.concatenate([y0w, A_non0[:, None]], axis=1).ravel()
+    load0 = mw.load(V0, y0w)
+    y0 = np.concatenate([y0w, A_non0[:, None], np.zeros((m, 1))], axis=1).ravel()
     res = solve_ivp(
         fun,
         (V0, float(V_st[-1])),
@@ -98,6 +108,8 @@ def solve_lines(
         "V0": V0,
         "zeta0": float(mw.zeta(V0)[0]),
         "start_plastic_area": float(np.max(A_pl0)),
+        "start_load": load0,
+        "drift_load": Y[:, :, n + 2],
         "steps": int(res.t.size),
         "nfev": int(res.nfev),
         "njev": int(res.njev),

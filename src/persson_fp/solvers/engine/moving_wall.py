@@ -26,22 +26,25 @@ to round-off; the load balance is met to the discretisation error (reported).
 ``start_plastic_area``).
 
 *Error estimate.*  No closed form, so each run is paired with one at half the cells and half the steps;
-the Richardson estimate of the fine run's error is :math:`|Q_h - Q_{2h}|/3` for every area and load at every
-station (``info["error_estimate"]``); the observed order is measured in the tests and in
-``benchmarks/plasticity.py``.
+the Richardson estimate of the fine run's error for every area and load at every station
+(``info["error_estimate"]``; :mod:`persson_fp.solvers.engine.estimate`, which adds the start-up and far-wall parts
+for general coefficients); the observed order is measured in the tests and in ``benchmarks/plasticity.py``.
 """
 
 from __future__ import annotations
+
+import time
 
 import numpy as np
 
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.solution import SolverError
 from persson_fp.solvers.engine import fluxes as engine
+from persson_fp.solvers.engine.domain import coefficient_domain
 from persson_fp.theory.fudge import NoFudge
 from persson_fp.theory.strip import strip_cdf, strip_quantities
 
-__all__ = ["MovingWall", "richardson"]
+__all__ = ["MovingWall", "min_cells", "check_resolved", "domain_end"]
 
 _GRADE = 0.05
 """Steps uniform in u = V + _GRADE V_end ln V (geometric while V is small, then uniform)."""
@@ -58,7 +61,7 @@ class MovingWall:
         Cells in x = p / sigma_Y.
     """
 
-    def __init__(self, problem: ContactProblem, n: int, k_domain: float = 10.0):
+    def __init__(self, problem: ContactProblem, n: int, k_domain: float = 10.0, p_end: float | None = None):
         self.problem = problem
         self.n = n
         self.h = 1.0 / n
@@ -67,10 +70,19 @@ class MovingWall:
         self.no_fudge = isinstance(problem.fudge, NoFudge)
         self.general = problem.general
         self.elastic = ContactProblem(problem.psd, problem.E_star, problem.p_bar, problem.fudge)
-        # without a hardness the far wall is the end of the numerical domain (what it absorbs is reported as lost)
-        self.p_end = problem.p_max(k_domain) if problem.hardness is None else None
+        # without a hardness the far wall is the end of the numerical domain (what it absorbs is reported as lost);
+        # general coefficients: sized from B1 and B2 themselves (persson_fp.solvers.engine.domain)
+        if problem.hardness is not None:
+            self.p_end = None
+        elif p_end is not None:
+            self.p_end = float(p_end)
+        else:
+            self.p_end = domain_end(problem, k_domain)[0]
         self._cache = {}
         self._coef_cache = {}
+        self._drift_cache = {}
+        self.deadline = None
+        """perf_counter() time by which a march must be done (the solver's max_time), or None."""
 
     # -- the wall along V --------------------------------------------------------------------------------
     def zeta(self, V):
@@ -128,8 +140,9 @@ class MovingWall:
         z = float(self.zeta(V)[0])
         dVdz = float(pr.dV_dzeta(z))
         B1f, B2f = pr.coefficients(s * self.x_faces, z)
-        _, B2c = pr.coefficients(s * self.x, z)
+        B1c, B2c = pr.coefficients(s * self.x, z)
         b1f, b2f, b2c = B1f / dVdz, B2f / dVdz, B2c / dVdz
+        self._drift_cache[V] = B1c / dVdz
         v = (sV / s) * self.x_faces - b1f / s
         if sV > 0 and not b2f[-1] > 0:
             raise ValueError(f"B2 must be > 0 at a moving yield wall (p = {s:.6g}, zeta = {z:.6g}), got {B2f[-1]!r}")
@@ -144,6 +157,33 @@ class MovingWall:
         self._coef_cache[V] = c
         return c
 
+    def drift_cells(self, V) -> np.ndarray:
+        """b1 = B1 / V'(zeta) at the cell centres at V (pressure per unit V), zeros without general coefficients."""
+        if not self.general:
+            return np.zeros(self.n)
+        if V not in self._drift_cache:
+            self._general_coefficients(V)
+        return self._drift_cache[V]
+
+    def drift_rate(self, V, y) -> np.ndarray:
+        r"""d/dV of the load carried by the drift, :math:`\int b_1 P\,dp = \sum_i b_1(p_i) w_i h` (m,)."""
+        if not self.general:
+            return np.zeros(y.shape[0])
+        return (y[:, : self.n] @ self.drift_cells(V)) * self.h
+
+    def load(self, V, y) -> np.ndarray:
+        """F_el + s a: the load of the state y (m, n + 1) at V (elastic, plus the wall's mass at the wall)."""
+        s, _ = self.wall(V)
+        return s * ((y[:, : self.n] @ self.x) * self.h + y[:, self.n])
+
+    def check_deadline(self, V) -> None:
+        """:class:`~persson_fp.SolverError` once the march has run past its ``deadline`` (max_time)."""
+        if self.deadline is not None and time.perf_counter() > self.deadline:
+            raise SolverError(
+                f"moving wall / general engine: max_time exceeded at zeta = {float(self.zeta(V)[0]):.6g} (of "
+                f"{float(self.problem.zeta_max):.6g}); use fewer cells or steps, or pass a larger max_time (seconds)"
+            )
+
     # -- start, nodes -----------------------------------------------------------------------------------
     def start(self, V0):
         """The state y0 (m, n + 1) at V0: the strip's cell averages at sigma_Y(zeta(V0)) and the elastic tau."""
@@ -151,12 +191,8 @@ class MovingWall:
         s0, _ = self.wall(V0)
         tau0 = np.asarray(self.elastic.tau_of_V(np.array([V0])), dtype=float).reshape(pr.n_loads)
         centre = pr.p_bar
-        if self.general:  # a Gaussian with the local coefficients at p_bar: mean p_bar + b1 V0, variance b2 V0
-            z0 = float(self.zeta(V0)[0])
-            B1, B2 = pr.coefficients(pr.p_bar, z0)
-            dVdz = float(pr.dV_dzeta(z0))
-            centre = pr.p_bar + B1 / dVdz * V0
-            tau0 = np.maximum(B2 / dVdz * V0, 1e-300)
+        if self.general:  # a Gaussian along the mean path: exact for coefficients that do not depend on p
+            centre, tau0 = self.start_moments(float(self.zeta(V0)[0]))
         edges = s0 * self.x_faces
         F = strip_cdf(edges[None, :], centre[:, None], s0, tau0[:, None])
         q = strip_quantities(centre, s0, tau0)
@@ -164,6 +200,30 @@ class MovingWall:
         y0[:, :-1] = np.diff(F, axis=-1) / self.h  # w = s P: its cell average in x is the p-cell mass / h
         y0[:, -1] = q["plastic_area"]
         return y0, q["noncontact_area"], q["plastic_area"]
+
+    def start_moments(self, z0: float, n: int = 64):
+        r"""Mean and variance (m,) of the start-up Gaussian at zeta0: the drift and the diffusion integrated in zeta
+        along the mean path, :math:`c(\zeta) = \bar p + \int_1^\zeta B_1(c, \zeta')\,d\zeta'` and
+        :math:`\tau_0 = \int_1^{\zeta_0} B_2(c, \zeta')\,d\zeta'` (trapezoid rule on ``n`` nodes in ln zeta, Heun
+        for the path).  Exact when B1 and B2 do not depend on p (any dependence on zeta included); otherwise the
+        error is that of freezing p over the start's width, measured by the start partner (:func:`run_pair`)."""
+        pr = self.problem
+        if z0 <= 1.0:
+            return pr.p_bar.copy(), np.full(pr.n_loads, 1e-300)
+        lz = np.linspace(0.0, np.log(z0), n + 1)
+        z = np.exp(lz)
+        c = pr.p_bar.astype(float).copy()
+        tau = np.zeros(pr.n_loads)
+        B1a, B2a = pr.coefficients(c, float(z[0]))
+        for i in range(n):
+            dz = z[i + 1] - z[i]
+            c_pred = c + dz * B1a
+            B1b, B2b = pr.coefficients(c_pred, float(z[i + 1]))
+            c = c + 0.5 * dz * (B1a + B1b)
+            B1b, B2b = pr.coefficients(c, float(z[i + 1]))
+            tau += 0.5 * dz * (B2a + B2b)
+            B1a, B2a = B1b, B2b
+        return c, np.maximum(tau, 1e-300)
 
     def choose_V0(self, V_first: float, tau0_fraction: float):
         """Start where sqrt(tau) spans ~3 cells of the wall's grid, at most ``tau0_fraction`` of the first
@@ -222,6 +282,10 @@ class MovingWall:
         A_non = np.empty((n_st, m))
         s_st = np.empty(n_st)
         absorbed = np.zeros(m)
+        drift = np.zeros(m)  # int b1 P dp dV since V0 (the first-moment law, info["load_law"])
+        drift_st = np.empty((n_st, m))
+        load0 = self.load(V0, y)
+        rate = self.drift_rate(V0, y)
         peclet = 0.0
         k_st = 0
         for k in range(V_nodes.size - 1):
@@ -240,15 +304,21 @@ class MovingWall:
             coef = lambda V, S_bar=S_bar: self.coefficients(V, S_bar)  # noqa: E731
             y, j = engine.step(coef, Va, dV, y, h, "be-halves" if k < damped else scheme, source)
             absorbed += j
+            rate_b = self.drift_rate(Vb, y)
+            drift += 0.5 * dV * (rate + rate_b)  # trapezoid in V: second order, like the march
+            rate = rate_b
             c = coef(Vb)
             peclet = max(peclet, float(np.max(np.abs(c.v[:, -1]) * h / np.max(c.D))))
             if not np.all(np.isfinite(y)):
                 raise SolverError(f"moving wall: non-finite values at V = {Vb:.6g}; raise n_steps")
+            if self.deadline is not None and k % 16 == 15:
+                self.check_deadline(Vb)
             while k_st < n_st and k + 1 == st_idx[k_st]:
                 W[k_st] = y[:, :-1]
                 A_pl[k_st] = y[:, -1]
                 A_non[k_st] = A_non0 + absorbed
                 s_st[k_st] = self.wall(Vb)[0]
+                drift_st[k_st] = drift
                 k_st += 1
         A_el = W.sum(axis=-1) * h
         F_el = s_st[:, None] * (W @ self.x) * h
@@ -263,15 +333,25 @@ class MovingWall:
             "V0": V0,
             "zeta0": float(self.zeta(V0)[0]),
             "start_plastic_area": float(np.max(A_pl0)),
+            "start_load": load0,
+            "drift_load": drift_st,
             "steps": V_nodes.size - 1,
             "max_cell_peclet": peclet,
         }
 
 
-def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0) -> None:
+def min_cells(problem, V_st, k_domain: float = 10.0, p_end=None) -> int:
+    """The fewest cells n with which the PDF spans at least one cell at every station (:func:`check_resolved`)."""
+    s = MovingWall(problem, 4, k_domain, p_end).wall_many(V_st)[0]
+    S1 = float(problem.fudge.S(np.array(1.0)))
+    return int(np.ceil(float(np.max(s / np.sqrt(S1 * np.asarray(V_st, dtype=float)))) * (1.0 + 1e-12)))
+
+
+def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0, p_end=None) -> None:
     """``ValueError`` unless the PDF spans at least one cell of the stretched grid at every station:
-    sqrt(tau) >= sigma_Y / n, tau taken as S(1) V (its largest value before contact is lost)."""
-    mw = MovingWall(problem, n, k_domain)
+    sqrt(tau) >= sigma_Y / n (or p_end / n without a hardness), tau taken as S(1) V (its largest value before
+    contact is lost)."""
+    mw = MovingWall(problem, n, k_domain, p_end)
     s, _ = mw.wall_many(V_st)
     S1 = float(problem.fudge.S(np.array(1.0)))
     need = s / n
@@ -280,120 +360,16 @@ def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0) -> No
     if np.any(bad):
         i = int(np.argmax(bad))
         raise ValueError(
-            f"moving wall: the PDF at zeta = {zeta_st[i]:.6g} (width sqrt(tau) ~ {have[i]:.3e}) is narrower than "
-            f"one cell of the grid on [0, sigma_Y] = [0, {s[i]:.4g}] with n_p = {n}; raise n_p to >= "
+            f"moving wall / general engine: the PDF at zeta = {zeta_st[i]:.6g} (width sqrt(tau) ~ {have[i]:.3e}) "
+            f"is narrower than one cell of the grid on [0, {s[i]:.4g}] with n_p = {n}; raise n_p to >= "
             f"{int(np.ceil(n * float(np.max(need / have))))} or start zeta_out later"
         )
 
 
-_QUANTITIES = ("elastic_area", "plastic_area", "noncontact_area", "elastic_load", "plastic_load")
-
-
-def richardson(fine: dict, coarse: dict, order: float = 2.0) -> dict:
-    """Richardson estimate of the fine run's error, |Q_h - Q_2h| / (2^order - 1), per quantity (n_st, m)."""
-    f = 2.0**order - 1.0
-    return {q: np.abs(fine[q] - coarse[q]) / f for q in _QUANTITIES}
-
-
-def solve_cells(
-    solver,
-    n: int,
-    n_steps: int,
-    scheme: str,
-    coupling: str,
-    damped: int,
-    tau0_fraction: float,
-    tol,
-    zeta0=None,
-    k_domain: float = 10.0,
-):
-    """The moving-wall run of ``"fv"``: (n, n_steps) and its Richardson partner (n/2, n_steps/2)."""
-    pr = solver.problem
-    fine, coarse = run_pair(
-        solver,
-        n,
-        zeta0,
-        k_domain,
-        lambda mw, V_st, V0, level: mw.solve(
-            V_st, max(n_steps // 2**level, 2), scheme, coupling, damped, tau0_fraction, V0
-        ),
-    )
-    what = f"|Q(n_p, n_steps) - Q(n_p/2, n_steps/2)|, n_p = {n}, n_steps = {n_steps} (conservative)"
-    info = {
-        "steps": fine["steps"],
-        "scheme": scheme,
-        "coupling": "exact (S = 1)" if isinstance(pr.fudge, NoFudge) else coupling,
-    }
-    return finish(solver, n, fine, coarse, what, tol, info)
-
-
-def run_pair(solver, n: int, zeta0, k_domain: float, run):
-    """The run at n cells and its partner at n/2 from the same start: ``run(mw, V_st, V0, level)`` (level 0, 1)
-    returns the per-station dict of :meth:`MovingWall.solve`; the resolution is checked first."""
-    pr = solver.problem
-    V_st = np.asarray(solver.V_out, dtype=float)
-    check_resolved(pr, V_st, n, solver.zeta_out, k_domain)
-    fine = run(MovingWall(pr, n, k_domain), V_st, _start_V(pr, zeta0), 0)
-    coarse = run(MovingWall(pr, max(n // 2, 4), k_domain), V_st, fine["V0"], 1)
-    return fine, coarse
-
-
-def _start_V(pr, zeta0):
-    V0 = None if zeta0 is None else float(pr.V(zeta0))
-    if V0 is not None and V0 <= 0.0:
-        raise ValueError("zeta0 must be > 1 for a moving yield wall (the start is the PDF at zeta0, not the delta)")
-    return V0
-
-
-def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra: dict):
-    """Checks, error estimate and the :class:`~persson_fp.solvers.base.SolverOutput` of a moving-wall run."""
-    from persson_fp.solvers.base import SolverOutput
-
-    pr = solver.problem
-    est = richardson(fine, coarse, order=1.0)  # conservative: exact for first order, 3x over at second
-    Wf, Wc = fine["W"], coarse["W"]
-    if Wf.shape[-1] == 2 * Wc.shape[-1]:  # L1 of P: the fine cells averaged in pairs onto the coarse grid
-        est["L1"] = np.abs(0.5 * (Wf[..., 0::2] + Wf[..., 1::2]) - Wc).sum(axis=-1) / Wc.shape[-1]
-    else:
-        est["L1"] = np.full(fine["elastic_area"].shape, np.nan)
-    area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
-    area_residual = float(np.max(np.abs(area_sum - 1.0)))
-    if pr.general:  # a drift B1 moves the load: F_el + F_pl = p_bar is not a law of the general equation
-        load_residual = float("nan")
-    else:
-        load_residual = float(np.max(np.abs(fine["elastic_load"] + fine["plastic_load"] - pr.p_bar) / pr.p_bar))
-    if area_residual > 1e-10:
-        raise SolverError(
-            f"moving wall: the areas do not sum to 1 (residual {area_residual:.3e}): the conservative scheme broke; "
-            "this is a bug or an unstable step -- raise n_steps"
-        )
-    worst_area = max(float(np.max(est[q])) for q in ("elastic_area", "plastic_area", "noncontact_area"))
-    if tol is not None and (worst_area > tol or (np.isfinite(load_residual) and load_residual > tol)):
-        raise SolverError(
-            f"moving wall: the error estimate {worst_area:.3e} (areas, Richardson) or the load residual "
-            f"{load_residual:.3e} exceeds tol = {tol:.3g}; raise n_p and n_steps (both enter at second order)"
-        )
-    s = fine["s"]
-    p = s[:, None] * (np.arange(n) + 0.5)[None, :] / n
-    info = {
-        "grid": {"n_p": n, "mapping": "x = p / sigma_Y(zeta)", "p_max": s},
-        "zeta0": fine["zeta0"],
-        **info_extra,
-        "moving_wall": True,
-        "error_estimate": {**est, "method": what, "max_area": worst_area},
-        "area_residual": area_residual,
-        "load_residual": load_residual,
-        "start_plastic_area": fine["start_plastic_area"],
-        "far_wall_mass": float(np.max(fine["plastic_area"])) if pr.hardness is None else 0.0,
-        "max_cell_peclet": fine["max_cell_peclet"],
-    }
-    return SolverOutput(
-        p=p,
-        P0=fine["W"] / s[:, None, None],
-        weights=np.broadcast_to((s * (1.0 / n))[:, None], p.shape).copy(),
-        kind="cell",
-        info=info,
-        contact_area=fine["elastic_area"],
-        contact_area_flux=1.0 - fine["noncontact_area"] - (fine["plastic_area"] if pr.hardness is None else 0.0),
-        plastic_area=fine["plastic_area"] if pr.hardness is not None else None,
-    )
+def domain_end(problem, k_domain: float):
+    """(p_end, info) of the far wall without a hardness: from the coefficients for a general problem
+    (:func:`~persson_fp.solvers.engine.domain.coefficient_domain`), else max(p_bar) + k sqrt(tau)."""
+    if problem.general:
+        return coefficient_domain(problem, k_domain)
+    p_end = float(problem.p_max(k_domain))
+    return p_end, {"p_end": p_end, "rule": "max(p_bar) + k_domain sqrt(tau(zeta_max))"}
