@@ -28,6 +28,7 @@ METHODS = {
     "fipy": "persson_fp.solvers.backends.fipy:FiPySolver",
     "chapman-kolmogorov": "persson_fp.solvers.chapman_kolmogorov:ChapmanKolmogorovSolver",
     "monte-carlo": "persson_fp.solvers.monte_carlo:MonteCarloSolver",
+    "chebyshev": "persson_fp.solvers.chebyshev:ChebyshevSolver",
 }
 """Method name -> "module:Class"."""
 
