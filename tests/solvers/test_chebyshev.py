@@ -109,7 +109,6 @@ def _besq_reference(p_bar, V_end, n=360, V_start_frac=2e-3, e_k=8.0, L_k=60.0):
     cc *= (-1.0) ** j
     D = np.outer(cc, 1 / cc) / (x[:, None] - x[None, :] + np.eye(n + 1))
     D -= np.diag(D.sum(1))
-    D1 = D / dpdx[:, None]
     D2 = (D @ D) / dpdx[:, None] ** 2 - (d2pdx2 / dpdx**3)[:, None] * D
     b = 1 + p / (2 * p_bar)
     Lop = (0.5 * D2 * b[None, :])[1:-1, 1:-1]

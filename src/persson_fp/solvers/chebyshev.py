@@ -66,7 +66,9 @@ class ChebyshevSolver(Solver):
         if o["k_domain"] is not None:
             o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 100.0)
             if o["k_domain"] < 5.0:
-                raise ValueError(f"k_domain must lie in [5, 100], got {o['k_domain']!r}: the far wall would absorb load")
+                raise ValueError(
+                    f"k_domain must lie in [5, 100], got {o['k_domain']!r}: the far wall would absorb load"
+                )
         if pr.fudge.name != "none":
             raise ValueError(
                 f"method 'chebyshev' solves fudge-free problems (B2 = b(p) dV/dzeta), got fudge={pr.fudge.name!r}; "
@@ -212,8 +214,14 @@ class ChebyshevSolver(Solver):
         ripple = (P < 0) & (P > -1e-6 * peak)
         P = np.where(ripple, 0.0, P)
         info = {
-            "grid": {"n_p": n, "p_max": p_max, "k_domain": k, "mapping": "p = centre + eps sinh(a1 + h (x + 1)), x Chebyshev, one per load",
-                     "centre": grid._map[2], "eps": grid._map[3]},
+            "grid": {
+                "n_p": n,
+                "p_max": p_max,
+                "k_domain": k,
+                "mapping": "p = centre + eps sinh(a1 + h (x + 1)), x Chebyshev, per load",
+                "centre": grid._map[2],
+                "eps": grid._map[3],
+            },
             "V0": V0,
             "zeta0": float(self.zeta_from_V(V0)[0]),
             "runs": runs,

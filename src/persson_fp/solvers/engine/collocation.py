@@ -214,8 +214,11 @@ def start_density(bfun, cfun, p, p0, V0, scale):
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         drift = _segment_integral(drift_integrand, a, p)
         lam = _segment_integral(lam_integrand, a, p)
-        lam_mean = np.where(np.abs(dy) > 0, lam / np.where(dy == 0, 1.0, dy), 0.5 * (lam_integrand(a)) * np.sqrt(
-            np.maximum(bfun(a), 1e-300)))
+        lam_mean = np.where(
+            np.abs(dy) > 0,
+            lam / np.where(dy == 0, 1.0, dy),
+            0.5 * (lam_integrand(a)) * np.sqrt(np.maximum(bfun(a), 1e-300)),
+        )
         y0 = lamperti_distance(bfun, np.zeros_like(p0), p0)[:, None]  # start's distance from the wall
         yy = y0 + dy
         gauss = np.exp(-0.5 * dy * dy / V0) - np.exp(-0.5 * (yy + y0) ** 2 / V0)
