@@ -35,7 +35,7 @@ def _image(p, p_bar, V, b=1.0, c=0.0):
 def _l1(sol, ref_pdf):
     """int |P0 - ref| dp at the last station, first load: the polynomial (barycentric form in the Chebyshev
     coordinate of the solution's map) on 20 001 points, trapezoid (its error << the tested levels)."""
-    p, P, g = sol.p, sol.P0_all[-1, 0], sol.info["grid"]
+    p, P, g = np.atleast_2d(sol.p)[-1], sol.P0_all[-1, 0], sol.info["grid"]
     n = p.size - 1
     c, e = float(g["centre"][0]), float(g["eps"][0])
     a1 = np.arcsinh(-c / e)

@@ -13,10 +13,11 @@ coefficients are refused (use "fv" or "mol").
 
 Error estimate (``info["error_estimate"]``, per station and load): the differences from a partner run at
 3/4 of the degree (the grid) and from one started at 4 V0 divided by 4 (the start; its error scales as V0^2,
-so the true ratio is 15), plus twice the mass lost at the far wall.  With ``tol`` the degree and V0 are raised
-until the estimate meets it.  Negative ripples of the polynomial below 1e-6 of the peak (in the tails and next
-to the walls, within the estimate) are set to 0 in P0; A* and the load are the quadratures of the polynomial
-itself (Clenshaw--Curtis, exact for it).
+so the true ratio is 15), plus twice the mass lost at the far wall and a round-off floor 4 eps n^2 (the error of
+the dense exponential grows with the degree; measured ~1e-11 at n = 250).  With ``tol`` the degree is raised
+and V0 lowered until the estimate meets it.  Negative ripples of the polynomial below 1e-6 of the peak (in the
+tails and next to the walls, within the estimate) are set to 0 in P0; A* and the load are the quadratures of the
+polynomial itself (Clenshaw--Curtis, exact for it).
 """
 
 from __future__ import annotations
@@ -46,7 +47,7 @@ class ChebyshevSolver(Solver):
     n_p : int or None
         A fixed polynomial degree in [8, 1000] (no adaptation; the estimate is still reported).
     V0_fraction : float or None
-        Start V0 / V(first station) in (0, 0.5]; default from ``tol``.
+        Start V0 / V(station) in (0, 0.1] (every station starts afresh from the delta); default from ``tol``.
     k_domain : float or None
         Far wall at k_domain unit-diffusion widths sqrt(V_max) beyond the largest load (in the Lamperti
         distance int dp / sqrt(b)); default from ``tol`` (8 to 12).
@@ -62,7 +63,7 @@ class ChebyshevSolver(Solver):
         if o["n_p"] is not None:
             o["n_p"] = check_int(o["n_p"], "n_p", 8, 1000)
         if o["V0_fraction"] is not None:
-            o["V0_fraction"] = check_float(o["V0_fraction"], "V0_fraction", 0.0, 0.5)
+            o["V0_fraction"] = check_float(o["V0_fraction"], "V0_fraction", 0.0, 0.1)
         if o["k_domain"] is not None:
             o["k_domain"] = check_float(o["k_domain"], "k_domain", 0.0, 100.0)
             if o["k_domain"] < 5.0:
@@ -109,60 +110,77 @@ class ChebyshevSolver(Solver):
                     f"changes with zeta (at zeta = {z:.6g}); use method='fv' or 'mol'"
                 )
 
+        drift = c0 is not None and bool(np.any(c0 != 0.0))
+
+        def coef(p):  # (b, c or None) per unit V, one evaluation of the coefficients
+            B1, B2 = self._raw(p, z_ref)
+            return B2 / g_ref, (B1 / g_ref if drift else None)
+
+        self._coef = coef
+
         def b(p):
-            return self._raw(p, z_ref)[1] / g_ref
+            return coef(p)[0]
 
-        c = None
-        if c0 is not None and np.any(c0 != 0.0):
-
-            def c(p):
-                return self._raw(p, z_ref)[0] / g_ref
-
-        return b, c
+        return b, ((lambda p: coef(p)[1]) if drift else None)
 
     # -- the solve ------------------------------------------------------------------------------------
-    def _domain(self, tol):
+    def _domain(self, tol, V):
+        """(p_max, k) for the PDF at V: k widths sqrt(V) beyond the largest load in the Lamperti distance."""
         pr, b = self.problem, self._b_ref
         k = self.opts["k_domain"] or float(np.clip(math.sqrt(2.0 * math.log(1.0 / (1e-3 * tol))) + 1.0, 8.0, 12.0))
         pbar = float(np.max(pr.p_bar))
-        need = k * math.sqrt(pr.V_max)
+        need = k * math.sqrt(V)
         if self._c_ref is not None:  # a drift moves the PDF by about c V: widen by the largest push outwards
             probe = np.linspace(0.0, pr.p_max(2.0 * k), 65)
-            need += max(0.0, float(np.max(self._c_ref(probe) / np.sqrt(np.maximum(b(probe), 1e-300))))) * pr.V_max
-        hi = pbar + math.sqrt(float(b(np.array([pbar]))[0]) * pr.V_max) * k
+            need += max(0.0, float(np.max(self._c_ref(probe) / np.sqrt(np.maximum(b(probe), 1e-300))))) * V
+        hi = pbar + math.sqrt(float(b(np.array([pbar]))[0]) * V) * k
         for _ in range(80):
             if float(co.lamperti_distance(b, np.array(pbar), np.array(hi))) >= need:
                 return hi, k
             hi = pbar + 1.5 * (hi - pbar)
         raise ValueError("method 'chebyshev': B2 grows too fast in p to bound the domain (no far wall found)")
 
-    def _run(self, n, V0, p_max):
-        """P at the stations on one grid: (grid, P (n_zeta, n_loads, n + 1))."""
+    def _run(self, n, frac, p_max):
+        """P at the stations: (grids, one per station, P (n_zeta, n_loads, n + 1)).
+
+        Every station k starts afresh from the delta: the small-time start at V0_k = frac x V_k on a grid whose
+        nodes cluster for that start (within a few widths sqrt(b V0_k) of p_bar), then one exponential to V_k.
+        An early station does not make a later one start narrow: the nodes crowded for a narrow start would
+        carry its stiff operator's round-off to the far stations (measured: 5e-10 at zeta_max after a station
+        at zeta = 2), and passing a state between grids carries the start's undamped high modes with it.
+        """
         pr, b = self.problem, self._b_ref
         pb = pr.p_bar.astype(float)
         b_at = b(pb)
         if np.any(b_at <= 0):
             raise ValueError("method 'chebyshev': B2 vanishes at the load p_bar (the start cannot spread)")
-        grid = co.chebyshev_grid(n, p_max, pb, 3.0 * np.sqrt(b_at * V0))
-        P0 = co.start_density(b, self._c_ref, grid.p, pb, V0, float(np.max(pb)))
-        L = co.generator(grid, b(grid.p), None if self._c_ref is None else self._c_ref(grid.p))
-        dV = np.diff(np.concatenate(([V0], self.V_out)))
-        inner = co.propagate(L, P0[:, 1:-1], dV)
-        P = np.zeros((dV.size,) + grid.p.shape)
-        P[:, :, 1:-1] = inner
-        return grid, P
+        grids, out = [], None
+        for k, V in enumerate(self.V_out):
+            V0 = frac * float(V)
+            grid = co.chebyshev_grid(n, p_max[k], pb, 3.0 * np.sqrt(b_at * V0))
+            P = co.start_density(self._coef, grid.p, pb, V0)
+            P[:, 0] = P[:, -1] = 0.0
+            L = co.generator(grid, *self._coef(grid.p))
+            P[:, 1:-1] = co.propagate(L, P[:, 1:-1], [float(V) - V0])[-1]
+            if out is None:
+                out = np.zeros((self.V_out.size,) + P.shape)
+            out[k] = P
+            grids.append(grid)
+        return grids, out
 
-    def _stats(self, grid, P):
-        A = np.einsum("zln,ln->zl", P, grid.w)
-        F = np.einsum("zln,ln->zl", P, grid.w * grid.p)
+    @staticmethod
+    def _stats(grids, P):
+        A = np.stack([np.sum(P[k] * g.w, axis=-1) for k, g in enumerate(grids)])
+        F = np.stack([np.sum(P[k] * g.w * g.p, axis=-1) for k, g in enumerate(grids)])
         return A, F
 
     def _compare(self, main, other):
         """(L1 of the difference, |dA|, |dF| / p_bar) per station and load, the other run interpolated."""
         g, P = main
         g2, P2 = other
-        Q = np.stack([co.interpolate(g2, P2[k], g.p) for k in range(P.shape[0])])
-        L1 = np.einsum("zln,ln->zl", np.abs(P - Q), g.w)
+        L1 = np.stack(
+            [np.sum(np.abs(P[k] - co.interpolate(g2[k], P2[k], g[k].p)) * g[k].w, axis=-1) for k in range(len(g))]
+        )
         A, F = self._stats(g, P)
         A2, F2 = self._stats(g2, P2)
         return L1, np.abs(A - A2), np.abs(F - F2) / self.problem.p_bar
@@ -170,26 +188,25 @@ class ChebyshevSolver(Solver):
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
         tol = o["tol"]
-        p_max, k = self._domain(tol)
-        V_first = float(self.V_out[0])
+        doms = [self._domain(tol, float(V)) for V in self.V_out]  # a far wall per station
+        p_max, k = np.array([d[0] for d in doms]), doms[0][1]
         frac = o["V0_fraction"] or float(np.clip(0.3 * math.sqrt(tol), 3e-5, 1e-2))
-        n = o["n_p"] or int(np.clip(12 + 9 * math.log10(1.0 / tol), 24, N_MAX))
+        n = o["n_p"] or int(np.clip(8 + 8 * math.log10(1.0 / tol), 24, N_MAX))
         runs = 0
         while True:
-            V0 = frac * V_first
-            main = self._run(n, V0, p_max)
-            grid_part = self._run(max(8, int(round(0.75 * n))), V0, p_max)
-            start_part = self._run(n, 4.0 * V0, p_max)
+            main = self._run(n, frac, p_max)
+            grid_part = self._run(max(8, int(round(0.75 * n))), frac, p_max)
+            start_part = self._run(n, 4.0 * frac, p_max)
             runs += 3
             L1_g, dA_g, dF_g = self._compare(main, grid_part)
             L1_s, dA_s, dF_s = self._compare(main, start_part)
             A, F = self._stats(*main)
-            far = np.maximum((pr.p_bar - F) / p_max, 0.0) if self._c_ref is None else np.full(A.shape, np.nan)
-            far_err = 2.0 * np.nan_to_num(far)
+            far = np.maximum((pr.p_bar - F) / p_max[:, None], 0.0) if self._c_ref is None else np.full(A.shape, np.nan)
+            far_err = 2.0 * np.nan_to_num(far) + 4.0 * np.finfo(float).eps * n * n  # (+ a round-off floor)
             est = {
                 "L1": L1_g + L1_s / 4.0 + far_err,
                 "contact_area": dA_g + dA_s / 4.0 + far_err,
-                "load": dF_g + dF_s / 4.0 + far_err * p_max / pr.p_bar,
+                "load": dF_g + dF_s / 4.0 + far_err * p_max[:, None] / pr.p_bar,
             }
             worst = max(float(np.max(v)) for v in est.values())
             if o["n_p"] is not None or worst <= tol:
@@ -208,22 +225,16 @@ class ChebyshevSolver(Solver):
                     f"chebyshev: the error estimate {worst:.3e} exceeds tol = {tol:.3g} at degree {N_MAX}; "
                     "loosen tol or use method='fv'"
                 )
-        grid, P = main
-        # the polynomial's ripple where P is ~0 (tails, next to the walls) is within the estimate: set to 0
-        peak = np.max(P, axis=-1, keepdims=True)
-        ripple = (P < 0) & (P > -1e-6 * peak)
-        P = np.where(ripple, 0.0, P)
+        grids, P = main
         info = {
             "grid": {
                 "n_p": n,
                 "p_max": p_max,
                 "k_domain": k,
                 "mapping": "p = centre + eps sinh(a1 + h (x + 1)), x Chebyshev, per load",
-                "centre": grid._map[2],
-                "eps": grid._map[3],
             },
-            "V0": V0,
-            "zeta0": float(self.zeta_from_V(V0)[0]),
+            "V0_fraction": frac,
+            "zeta0": self.zeta_from_V(frac * self.V_out),
             "runs": runs,
             "error_estimate": {
                 "L1": est["L1"],
@@ -234,14 +245,25 @@ class ChebyshevSolver(Solver):
                 "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + 2 x far-wall mass",
             },
             "far_wall_mass": far,
-            "ripple_zeroed": int(np.count_nonzero(ripple)),
         }
-        if pr.n_loads == 1:
-            p, w, Pout = grid.p[0], grid.w[0], P
+        if pr.n_loads == 1:  # the last station's grid (the widest domain), earlier stations' polynomials on it
+            # (at the nodes: spectrally accurate values, 0 beyond their far wall; A* and the load come from each
+            # station's own grid)
+            g0 = grids[-1]
+            p, w = g0.p[0], g0.w[0]
+            Pout = np.stack([P[k] if g is g0 else co.interpolate(g, P[k], g0.p) for k, g in enumerate(grids)])
         else:  # a common output grid: plain Chebyshev of twice the degree (areas and loads from the own grids)
             m = 2 * n
-            common = co.chebyshev_grid(m, p_max, np.array([0.5 * p_max]), np.array([1e6 * p_max]))
+            pm = float(p_max[-1])
+            common = co.chebyshev_grid(m, pm, np.array([0.5 * pm]), np.array([1e6 * pm]))
             p, w = common.p[0], common.w[0]
             q = np.broadcast_to(p, (pr.n_loads, p.size))
-            Pout = np.stack([co.interpolate(grid, P[kk], q) for kk in range(P.shape[0])])
+            Pout = np.stack([co.interpolate(grids[kk], P[kk], q) for kk in range(P.shape[0])])
+        if pr.n_loads == 1:  # the output grid's map
+            info["grid"].update(centre=g0._map[2], eps=g0._map[3])
+        # the polynomial's ripple where P is ~0 (tails, next to the walls) is within the estimate: set to 0
+        peak = np.max(Pout, axis=-1, keepdims=True)
+        ripple = (Pout < 0) & (Pout > -1e-6 * peak)
+        Pout = np.where(ripple, 0.0, Pout)
+        info["ripple_zeroed"] = int(np.count_nonzero(ripple))
         return SolverOutput(p=p, P0=Pout, weights=w, kind="point", info=info, contact_area=A, load=F)

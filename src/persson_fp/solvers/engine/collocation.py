@@ -158,69 +158,64 @@ def interpolate(grid: ChebGrid, values, p_query):
     return out
 
 
-def _segment_integral(f, a, b):
-    """int_a^b f(p) dp for arrays of endpoints (broadcast), by 24-point Gauss--Legendre; f vectorised."""
+def lamperti_distance(bfun, a, b):
+    """int_a^b dp / sqrt(b(p)) (sqrt(pressure^2)): the distance in the unit-diffusion variable Y.
+
+    24-point Gauss--Legendre over each [a, b] (broadcast arrays); ``bfun`` vectorised."""
     mid, half = 0.5 * (a + b), 0.5 * (b - a)
     q = mid[..., None] + half[..., None] * _GL_T
-    return half * np.sum(f(q) * _GL_W, axis=-1)
+    return half * np.sum(_GL_W / np.sqrt(np.maximum(bfun(q), 1e-300)), axis=-1)
 
 
-def lamperti_distance(bfun, a, b):
-    """int_a^b dp / sqrt(b(p)) (pressure^(0) per sqrt(V)): the distance in the unit-diffusion variable."""
-    return _segment_integral(lambda q: 1.0 / np.sqrt(np.maximum(bfun(q), 1e-300)), a, b)
-
-
-def start_density(bfun, cfun, p, p0, V0, scale):
+def start_density(coef, p, p0, V0):
     r"""The PDF at V0 of the process started at p0 (small-time expansion), at the nodes ``p``.
 
     Parameters
     ----------
-    bfun, cfun : callables
-        Diffusion b(p) > 0 and drift c(p) per unit V (``cfun`` may be None).
-    p : (n_loads, m) pressures; p0 : (n_loads,) starts; V0 : float, pressure^2; scale : float, pressure
-        (the finite-difference step for b', b'' is 1e-3 * scale * sqrt(V0) / scale ... in units of sqrt(V0)).
+    coef : callable
+        ``coef(q) -> (b, c)``: diffusion b > 0 and drift c per unit V at pressures q (any shape; one call).
+    p : (n_loads, m) array, pressure
+        Where the PDF is wanted.
+    p0 : (n_loads,) array, pressure
+        The starts (the delta's positions at V = 0).
+    V0 : float, pressure^2
+        The start's V.
 
     Returns
     -------
-    (n_loads, m) array, 1/pressure.
+    (n_loads, m) array, 1/pressure
+        :math:`\varphi_{V_0}(\Delta y) - \varphi_{V_0}(y + y_0)` times :math:`e^{\int\mu\,dy - V_0\bar\lambda}
+        / \sqrt{b(p)}` (module docstring); exact for constant b and c.
     """
-    h = 0.02 * np.sqrt(V0)
-
-    def coeffs(q):
-        bs = [bfun(q + k * h) for k in (-2, -1, 0, 1, 2)]
-        b0 = bs[2]
-        b1 = (bs[0] - 8 * bs[1] + 8 * bs[3] - bs[4]) / (12 * h)
-        b2 = (-bs[0] + 16 * bs[1] - 30 * b0 + 16 * bs[3] - bs[4]) / (12 * h * h)
-        if cfun is None:
-            c0 = c1 = 0.0
-        else:
-            cs = [cfun(q + k * h) for k in (-2, -1, 1, 2)]
-            c0 = cfun(q)
-            c1 = (cs[0] - 8 * cs[1] + 8 * cs[2] - cs[3]) / (12 * h)
-        return np.maximum(b0, 1e-300), b1, b2, c0, c1
-
-    def drift_integrand(q):  # mu_Y dy = (c / b - b' / (4 b)) dp
-        b0, b1, _, c0, _ = coeffs(q)
-        return c0 / b0 - 0.25 * b1 / b0
-
-    def lam_integrand(q):  # lambda dy = lambda / sqrt(b) dp
-        b0, b1, b2, c0, c1 = coeffs(q)
-        mu = (c0 - 0.25 * b1) / np.sqrt(b0)
-        dmu_dy = c1 - 0.5 * c0 * b1 / b0 - 0.25 * b2 + b1 * b1 / (8.0 * b0)
-        return 0.5 * (mu * mu + dmu_dy) / np.sqrt(b0)
-
+    h = 0.02 * np.sqrt(V0)  # the finite-difference step of b', b'', c' (4th-order stencils)
     a = np.broadcast_to(p0[:, None], p.shape)
-    dy = lamperti_distance(bfun, a, p)
+    mid, half = 0.5 * (a + p), 0.5 * (p - a)
+    q = mid[..., None] + half[..., None] * _GL_T  # (n_loads, m, 24) quadrature points of [p0, p]
+    q0 = 0.5 * p0[:, None] * (1.0 + _GL_T)  # of [0, p0]
+    shifts = np.array([-2.0, -1.0, 0.0, 1.0, 2.0]) * h
+    pts = np.concatenate([(q[None] + shifts[:, None, None, None]).ravel(), q0.ravel(), p.ravel()])
+    b_all, c_all = coef(pts)
+    k = q.size * 5
+    bs = b_all[:k].reshape((5,) + q.shape)
+    cs = np.zeros_like(bs) if c_all is None else c_all[:k].reshape((5,) + q.shape)
+    b_q0 = np.maximum(b_all[k : k + q0.size].reshape(q0.shape), 1e-300)
+    b_p = np.maximum(b_all[k + q0.size :].reshape(p.shape), 1e-300)
+    b0 = np.maximum(bs[2], 1e-300)
+    b1 = (bs[0] - 8 * bs[1] + 8 * bs[3] - bs[4]) / (12 * h)
+    b2 = (-bs[0] + 16 * bs[1] - 30 * bs[2] + 16 * bs[3] - bs[4]) / (12 * h * h)
+    c0 = cs[2]
+    c1 = (cs[0] - 8 * cs[1] + 8 * cs[3] - cs[4]) / (12 * h)
+    sq = np.sqrt(b0)
+    mu = (c0 - 0.25 * b1) / sq  # drift of Y = int dp / sqrt(b)
+    dmu_dy = c1 - 0.5 * c0 * b1 / b0 - 0.25 * b2 + b1 * b1 / (8.0 * b0)
+    lam = 0.5 * (mu * mu + dmu_dy)
+    dy = half * np.sum(_GL_W / sq, axis=-1)
+    drift = half * np.sum(_GL_W * mu / sq, axis=-1)
+    lam_int = half * np.sum(_GL_W * lam / sq, axis=-1)
+    lam_mid = lam[..., _GL_T.size // 2]  # lambda near p0 (for dy = 0)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        drift = _segment_integral(drift_integrand, a, p)
-        lam = _segment_integral(lam_integrand, a, p)
-        lam_mean = np.where(
-            np.abs(dy) > 0,
-            lam / np.where(dy == 0, 1.0, dy),
-            0.5 * (lam_integrand(a)) * np.sqrt(np.maximum(bfun(a), 1e-300)),
-        )
-        y0 = lamperti_distance(bfun, np.zeros_like(p0), p0)[:, None]  # start's distance from the wall
-        yy = y0 + dy
-        gauss = np.exp(-0.5 * dy * dy / V0) - np.exp(-0.5 * (yy + y0) ** 2 / V0)
-        P = gauss * np.exp(drift - V0 * lam_mean) / np.sqrt(2 * np.pi * V0 * np.maximum(bfun(p), 1e-300))
+        lam_mean = np.where(dy != 0, lam_int / np.where(dy == 0, 1.0, dy), lam_mid)
+        y0 = (0.5 * p0 * np.sum(_GL_W / np.sqrt(b_q0), axis=-1))[:, None]  # the start's distance from the wall
+        gauss = np.exp(-0.5 * dy * dy / V0) - np.exp(-0.5 * (2.0 * y0 + dy) ** 2 / V0)
+        P = gauss * np.exp(drift - V0 * lam_mean) / np.sqrt(2 * np.pi * V0 * b_p)
     return np.where(np.isfinite(P), P, 0.0)
