@@ -182,3 +182,17 @@ def test_loads_advance_together():
     c = sol.compare()
     assert float(np.max(c.area_error)) <= 1e-8
     assert np.all(sol.info["error_estimate"]["noncontact_area"] >= c.area_error)
+
+
+def test_linear_drift_obeys_the_moment_law():
+    # B1 = -a p dV/dzeta: d/dV int p P dp = int B1/(dV/dzeta) P dp = -a int p P dp (walls: P = 0, the far wall's
+    # flux negligible), so the load is p_bar exp(-a V) exactly -- an independent check of drift and start
+    a = 2.0 / VMAX
+    dV = PSD.dV_dzeta
+    fp = pf.FokkerPlanckProblem(
+        PSD, p_bar=PB, B1=lambda p, z: -a * p * dV(z), B2=lambda p, z: (1 + p / (2 * PB)) * dV(z)
+    )
+    sol = pf.solve(fp, method="chebyshev", tol=1e-9)
+    exact_load = PB * np.exp(-a * VMAX)
+    err = abs(float(sol.load[-1]) - exact_load) / PB
+    assert err <= 1e-8 and err <= float(sol.info["error_estimate"]["load"][-1, 0])

@@ -24,7 +24,16 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg as sla
 
-__all__ = ["ChebGrid", "chebyshev_grid", "start_density", "propagate", "interpolate", "lamperti_distance"]
+__all__ = [
+    "ChebGrid",
+    "chebyshev_grid",
+    "start_density",
+    "propagate",
+    "propagate_with_integral",
+    "wall_losses",
+    "interpolate",
+    "lamperti_distance",
+]
 
 _GL_T, _GL_W = np.polynomial.legendre.leggauss(24)
 
@@ -137,6 +146,32 @@ def propagate(L, P_start, dV):
         P = np.einsum("lij,lj->li", E, P)
         out[k] = P
     return out
+
+
+def propagate_with_integral(L, P_start, dV: float):
+    """(P after dV, int_0^dV P dV') for each load: one exponential of the augmented matrix [[L, P0], [0, 0]].
+
+    The integral gives the mass that left through either wall (:func:`wall_losses`).  Van Loan, IEEE Trans.
+    Autom. Control 23 (1978) 395: expm([[A, b], [0, 0]] t) = [[e^{At}, int_0^t e^{As} ds b], [0, 1]].
+    """
+    nl, m, _ = L.shape
+    M = np.zeros((nl, m + 1, m + 1))
+    M[:, :m, :m] = L
+    M[:, :m, m] = P_start
+    E = sla.expm(M * float(dV))
+    return np.einsum("lij,lj->li", E[:, :m, :m], P_start), E[:, :m, m]
+
+
+def wall_losses(grid: ChebGrid, b, c, I_inner):
+    """(mass out at p = 0, mass out at p_max) from the time integral of P at the interior nodes.
+
+    The flux is J = cP - 1/2 d(bP)/dp; with P = 0 on both walls the mass lost at p = 0 is
+    1/2 d(b int P)/dp there and at p_max -1/2 d(b int P)/dp (the polynomial's derivative).
+    """
+    I = np.zeros(grid.p.shape)
+    I[:, 1:-1] = I_inner
+    dbI = np.einsum("lij,lj->li", grid.D1[:, [0, -1], :], b * I)
+    return 0.5 * dbI[:, 0], -0.5 * dbI[:, 1]
 
 
 def interpolate(grid: ChebGrid, values, p_query):
