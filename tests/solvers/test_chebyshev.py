@@ -60,6 +60,7 @@ def test_homogenised_matches_the_closed_form_and_the_estimate_covers_it():
         assert float(np.max(c.L1)) <= tol and float(np.max(c.area_error)) <= tol
         assert np.all(est["L1"] >= c.L1) and np.all(est["noncontact_area"] >= c.area_error)
         assert abs(float(sol.load[0]) - PB) / PB <= tol
+        assert sol.info["mass_balance_residual"] <= tol  # what left the domain crossed a wall
 
 
 @pytest.mark.filterwarnings("ignore:chebyshev. P0 has negative values")  # coarse degrees ripple, as expected
@@ -172,6 +173,9 @@ def test_refuses_what_it_does_not_solve():
         pf.solve(pf.ContactProblem.reference(fudge="YP08"), method="chebyshev")
     with pytest.raises(ValueError, match="tol"):
         pf.solve(REF, method="chebyshev", tol=0.5)
+    explosive = pf.FokkerPlanckProblem(PSD, p_bar=PB, B2=lambda p, z: PSD.dV_dzeta(z) * (p / PB) ** 8)
+    with pytest.raises(ValueError, match="far wall"):  # p reaches infinity in finite V: no far wall is neutral
+        pf.solve(explosive, method="chebyshev")
     with pytest.raises(ValueError, match="hardness"):
         pf.solve(pf.ContactProblem.reference(hardness=0.075), method="chebyshev")
 

@@ -138,7 +138,11 @@ class ChebyshevSolver(Solver):
             if float(co.lamperti_distance(b, np.array(pbar), np.array(hi))) >= need:
                 return hi, k
             hi = pbar + 1.5 * (hi - pbar)
-        raise ValueError("method 'chebyshev': B2 grows too fast in p to bound the domain (no far wall found)")
+        raise ValueError(
+            "method 'chebyshev': B2 grows so fast in p (faster than p^2) that the pressure reaches any far wall in "
+            f"finite V: int dp / sqrt(B2 / (dV/dzeta)) from p_bar to infinity is below {need:.3g} (k_domain = "
+            f"{k:.3g} widths sqrt(V)); the answer depends on the far wall -- bound B2 at large p"
+        )
 
     def _run(self, n, frac, p_max):
         """P at the stations: (grids, one per station, P (n_zeta, n_loads, n + 1)).
@@ -156,6 +160,7 @@ class ChebyshevSolver(Solver):
             raise ValueError("method 'chebyshev': B2 vanishes at the load p_bar (the start cannot spread)")
         grids, out = [], None
         far = np.zeros((self.V_out.size, pb.size))
+        balance = np.zeros_like(far)
         for k, V in enumerate(self.V_out):
             V0 = frac * float(V)
             grid = co.chebyshev_grid(n, p_max[k], pb, 3.0 * np.sqrt(b_at * V0))
@@ -163,13 +168,16 @@ class ChebyshevSolver(Solver):
             P[:, 0] = P[:, -1] = 0.0
             b_n, c_n = self._coef(grid.p)
             L = co.generator(grid, b_n, c_n)
+            mass0 = np.sum(P * grid.w, axis=-1)
             P[:, 1:-1], I = co.propagate_with_integral(L, P[:, 1:-1], float(V) - V0)
-            far[k] = np.maximum(co.wall_losses(grid, b_n, c_n, I)[1], 0.0)
+            out0, out_far = co.wall_losses(grid, b_n, c_n, I)
+            far[k] = np.maximum(out_far, 0.0)
+            balance[k] = mass0 - np.sum(P * grid.w, axis=-1) - out0 - out_far  # what left = what crossed a wall
             if out is None:
                 out = np.zeros((self.V_out.size,) + P.shape)
             out[k] = P
             grids.append(grid)
-        self._far = far
+        self._far, self._balance = far, balance
         return grids, out
 
     @staticmethod
@@ -199,7 +207,7 @@ class ChebyshevSolver(Solver):
         runs = 0
         while True:
             main = self._run(n, frac, p_max)
-            far = self._far  # the mass out at p_max (from V0 on; before V0 the start is ~10 widths away)
+            far, balance = self._far, self._balance  # mass out at p_max (from V0 on), mass-balance residual
             grid_part = self._run(max(8, int(round(0.75 * n))), frac, p_max)
             start_part = self._run(n, 4.0 * frac, p_max)
             runs += 3
@@ -252,6 +260,7 @@ class ChebyshevSolver(Solver):
                 "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + 2 x far-wall mass + 4 eps n^2",
             },
             "far_wall_mass": far,
+            "mass_balance_residual": float(np.max(np.abs(balance))),
         }
         if pr.n_loads == 1:  # the last station's grid (the widest domain), earlier stations' polynomials on it
             # (at the nodes: spectrally accurate values, 0 beyond their far wall; A* and the load come from each

@@ -16,7 +16,7 @@ The start: the delta at p_bar at V = 0 is replaced by the small-time expansion a
 process (Y = int dp / sqrt(b), unit diffusion, drift mu(Y); Ait-Sahalia, Econometrica 70 (2002) 223):
 :math:`p_Y \approx \varphi_{V_0}(y - y_0) e^{\int_{y_0}^{y}\mu}\,e^{-V_0\bar\lambda}`, with
 :math:`\lambda = (\mu^2 + \mu')/2` averaged over [y0, y], and the image across the absorbing wall at p = 0.  Its
-error is O(V0^2) relative (exact for b = const, c = 0).  No solver imports this module's callers.
+error is O(V0^2) relative (exact for constant b and c).  Used by :mod:`persson_fp.solvers.chebyshev`.
 """
 
 from __future__ import annotations
@@ -28,7 +28,6 @@ __all__ = [
     "ChebGrid",
     "chebyshev_grid",
     "start_density",
-    "propagate",
     "propagate_with_integral",
     "wall_losses",
     "interpolate",
@@ -39,14 +38,20 @@ _GL_T, _GL_W = np.polynomial.legendre.leggauss(24)
 
 
 class ChebGrid:
-    """Stacked sinh-mapped Chebyshev--Lobatto grids on [0, p_max], one per load.
+    """Stacked sinh-mapped Chebyshev--Lobatto grids on [0, p_max], one per load (built by :func:`chebyshev_grid`).
 
-    Attributes
+    Parameters
     ----------
-    x : (n + 1,) Chebyshev points in [-1, 1].
-    p : (n_loads, n + 1) nodes (pressure); p[:, 0] = 0, p[:, -1] = p_max.
-    D1, D2 : (n_loads, n + 1, n + 1) first and second derivative matrices in p.
-    w : (n_loads, n + 1) Clenshaw--Curtis weights in p (exact for polynomials of degree n in x).
+    x : ndarray, shape (n + 1,)
+        Chebyshev points in [-1, 1], ascending.
+    p : ndarray, shape (n_loads, n + 1), pressure
+        The nodes; ``p[:, 0] = 0`` and ``p[:, -1] = p_max``.
+    D1, D2 : ndarray, shape (n_loads, n + 1, n + 1)
+        First (1/pressure) and second (1/pressure^2) derivative matrices in p.
+    w : ndarray, shape (n_loads, n + 1), pressure
+        Clenshaw--Curtis weights in p (exact for polynomials of degree n in x).
+    map_params : tuple
+        (a1, h, centre, eps) of the map p = centre + eps sinh(a1 + h (x + 1)).
     """
 
     def __init__(self, x, p, D1, D2, w, map_params):
@@ -55,10 +60,20 @@ class ChebGrid:
 
     @property
     def n(self) -> int:
+        """The polynomial degree (n + 1 nodes)."""
         return self.x.size - 1
 
     def x_of_p(self, p):
-        """The Chebyshev coordinate of pressures ``p`` ((n_loads, m) or broadcasting), per load."""
+        """The Chebyshev coordinate of pressures, per load (the map's exact inverse).
+
+        Parameters
+        ----------
+        p : ndarray, shape (n_loads, m), pressure
+
+        Returns
+        -------
+        ndarray, shape (n_loads, m)
+        """
         a1, h, c, eps = self._map
         return (np.arcsinh((p - c[:, None]) / eps[:, None]) - a1[:, None]) / h[:, None] - 1.0
 
@@ -104,6 +119,10 @@ def chebyshev_grid(n: int, p_max: float, centre, eps) -> ChebGrid:
     centre, eps : (n_loads,) arrays, pressure
         Where the nodes cluster (p_bar) and the width of the cluster (a few start widths); a large ``eps``
         gives the plain Chebyshev grid.
+
+    Returns
+    -------
+    ChebGrid
     """
     if n not in _BASIC_CACHE:
         _BASIC_CACHE[n] = _cheb_basic(n)
@@ -123,10 +142,20 @@ def chebyshev_grid(n: int, p_max: float, centre, eps) -> ChebGrid:
 
 
 def generator(grid: ChebGrid, b, c):
-    """The collocated forward operator on the interior nodes (Dirichlet walls), stacked over loads.
+    r"""The collocated forward operator on the interior nodes (Dirichlet walls), stacked over loads.
 
-    ``b``, ``c``: (n_loads, n + 1) diffusion and drift per unit V at the nodes.
-    Returns (n_loads, n - 1, n - 1): (L P)_i = 1/2 (b P)''(p_i) - (c P)'(p_i).
+    Parameters
+    ----------
+    grid : ChebGrid
+    b : ndarray, shape (n_loads, n + 1), pressure^2 per unit V
+        Diffusion at the nodes.
+    c : ndarray or None, shape (n_loads, n + 1), pressure per unit V
+        Drift at the nodes (None: 0).
+
+    Returns
+    -------
+    ndarray, shape (n_loads, n - 1, n - 1), 1 / pressure^2
+        :math:`(LP)_i = \tfrac12 (bP)''(p_i) - (cP)'(p_i)`.
     """
     M = 0.5 * grid.D2 * b[:, None, :]
     if c is not None and np.any(c):
@@ -134,25 +163,26 @@ def generator(grid: ChebGrid, b, c):
     return M[:, 1:-1, 1:-1]
 
 
-def propagate(L, P_start, dV):
-    """P after the V increments ``dV`` (a sequence): the states after each, stacked (n_steps, n_loads, n - 1).
-
-    Exact in V for the discretised operator ``L`` (n_loads, m, m): one matrix exponential per increment.
-    """
-    out = np.empty((len(dV),) + P_start.shape)
-    P = P_start
-    for k, d in enumerate(dV):
-        E = sla.expm(L * float(d))
-        P = np.einsum("lij,lj->li", E, P)
-        out[k] = P
-    return out
-
-
 def propagate_with_integral(L, P_start, dV: float):
-    """(P after dV, int_0^dV P dV') for each load: one exponential of the augmented matrix [[L, P0], [0, 0]].
+    """P after dV and its integral over the step, for each load: one exponential of [[L dV, P0 dV], [0, 0]].
 
-    The integral gives the mass that left through either wall (:func:`wall_losses`).  Van Loan, IEEE Trans.
-    Autom. Control 23 (1978) 395: expm([[A, b], [0, 0]] t) = [[e^{At}, int_0^t e^{As} ds b], [0, 1]].
+    Van Loan, IEEE Trans. Autom. Control 23 (1978) 395: expm([[A, b], [0, 0]] t) = [[e^{At},
+    int_0^t e^{As} ds b], [0, 1]].  Exact in V for the discretised operator.
+
+    Parameters
+    ----------
+    L : ndarray, shape (n_loads, m, m)
+        The operator (:func:`generator`).
+    P_start : ndarray, shape (n_loads, m), 1/pressure
+        P at the interior nodes at the start.
+    dV : float, pressure^2
+        The increment.
+
+    Returns
+    -------
+    (ndarray, ndarray), shape (n_loads, m) each
+        P after dV (1/pressure) and int_0^dV P dV' (pressure; gives the mass out through the walls,
+        :func:`wall_losses`).
     """
     nl, m, _ = L.shape
     M = np.zeros((nl, m + 1, m + 1))
@@ -163,10 +193,23 @@ def propagate_with_integral(L, P_start, dV: float):
 
 
 def wall_losses(grid: ChebGrid, b, c, I_inner):
-    """(mass out at p = 0, mass out at p_max) from the time integral of P at the interior nodes.
+    """The mass that left through each wall, from the time integral of P.
 
-    The flux is J = cP - 1/2 d(bP)/dp; with P = 0 on both walls the mass lost at p = 0 is
-    1/2 d(b int P)/dp there and at p_max -1/2 d(b int P)/dp (the polynomial's derivative).
+    The flux is J = cP - 1/2 d(bP)/dp; with P = 0 on both walls the mass out at p = 0 is
+    1/2 d(b int P dV)/dp there and at p_max -1/2 d(b int P dV)/dp (the polynomial's derivative).
+
+    Parameters
+    ----------
+    grid : ChebGrid
+    b, c : ndarray, shape (n_loads, n + 1)
+        Diffusion and drift per unit V at the nodes (``c`` unused: P = 0 on the walls).
+    I_inner : ndarray, shape (n_loads, n - 1), pressure
+        int P dV at the interior nodes (:func:`propagate_with_integral`).
+
+    Returns
+    -------
+    (ndarray, ndarray), shape (n_loads,) each
+        Mass out at p = 0 and at p_max (dimensionless).
     """
     I = np.zeros(grid.p.shape)
     I[:, 1:-1] = I_inner
@@ -175,7 +218,19 @@ def wall_losses(grid: ChebGrid, b, c, I_inner):
 
 
 def interpolate(grid: ChebGrid, values, p_query):
-    """Barycentric interpolation of nodal ``values`` (n_loads, n + 1) to ``p_query`` (n_loads, m)."""
+    """Barycentric interpolation (in the Chebyshev coordinate) of nodal values, per load.
+
+    Parameters
+    ----------
+    grid : ChebGrid
+    values : ndarray, shape (n_loads, n + 1)
+    p_query : ndarray, shape (n_loads, m), pressure
+        Where; points beyond [0, p_max] take the wall's value.
+
+    Returns
+    -------
+    ndarray, shape (n_loads, m)
+    """
     n = grid.n
     wb = np.ones(n + 1)
     wb[0] = wb[-1] = 0.5
@@ -194,9 +249,19 @@ def interpolate(grid: ChebGrid, values, p_query):
 
 
 def lamperti_distance(bfun, a, b):
-    """int_a^b dp / sqrt(b(p)) (sqrt(pressure^2)): the distance in the unit-diffusion variable Y.
+    """The distance int_a^b dp / sqrt(b(p)) in the unit-diffusion (Lamperti) variable Y.
 
-    24-point Gauss--Legendre over each [a, b] (broadcast arrays); ``bfun`` vectorised."""
+    Parameters
+    ----------
+    bfun : callable
+        b(p) > 0 (pressure^2 per unit V), vectorised.
+    a, b : ndarray, pressure
+        Segment ends (broadcasting); 24-point Gauss--Legendre on each.
+
+    Returns
+    -------
+    ndarray, sqrt(pressure^2 per unit V) -- i.e. in units of sqrt(V)
+    """
     mid, half = 0.5 * (a + b), 0.5 * (b - a)
     q = mid[..., None] + half[..., None] * _GL_T
     return half * np.sum(_GL_W / np.sqrt(np.maximum(bfun(q), 1e-300)), axis=-1)
