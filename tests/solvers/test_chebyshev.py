@@ -92,8 +92,10 @@ def test_estimate_above_the_true_error_with_drift(seed):
     assert float(sol.info["error_estimate"]["elastic_area"][-1, 0]) >= A_true or A_true < 1e-11
 
 
-def _besq_reference(p_bar, V_end, n=360, V_start_frac=2e-3, e_k=8.0, L_k=60.0):
-    """P(p, V_end) for B2 = (1 + p / (2 p_bar)) dV/dzeta: exact free start at a small V, then exp(L dV)."""
+def _besq_reference(p_bar, V_end, n=360, V_start_frac=2e-3, e_k=8.0, L_k=60.0, r=1.0):
+    """P(p, V_end) for B2 = (1 + r p / (2 p_bar)) dV/dzeta: exact free start at a small V, then exp(L dV).
+
+    X = (8 p_bar / r)(p + 2 p_bar / r) has quadratic variation 4X dV: a squared Bessel process of dimension 0."""
     V_s = V_start_frac * V_end
     L = p_bar + L_k * np.sqrt(V_end)
     # Chebyshev points clustered about p_bar by p = p_bar + e tan(...) (a map unlike the engine's)
@@ -111,11 +113,12 @@ def _besq_reference(p_bar, V_end, n=360, V_start_frac=2e-3, e_k=8.0, L_k=60.0):
     D = np.outer(cc, 1 / cc) / (x[:, None] - x[None, :] + np.eye(n + 1))
     D -= np.diag(D.sum(1))
     D2 = (D @ D) / dpdx[:, None] ** 2 - (d2pdx2 / dpdx**3)[:, None] * D
-    b = 1 + p / (2 * p_bar)
+    b = 1 + r * p / (2 * p_bar)
     Lop = (0.5 * D2 * b[None, :])[1:-1, 1:-1]
-    X0, X = 8 * p_bar * 3 * p_bar, 8 * p_bar * (p + 2 * p_bar)
+    kappa = 8 * p_bar / r
+    X0, X = kappa * (p_bar + 2 * p_bar / r), kappa * (p + 2 * p_bar / r)
     z = np.sqrt(X0 * X) / V_s
-    P0 = 8 * p_bar / (2 * V_s) * np.sqrt(X0 / X) * np.exp(-((np.sqrt(X) - np.sqrt(X0)) ** 2) / (2 * V_s)) * ive(1, z)
+    P0 = kappa / (2 * V_s) * np.sqrt(X0 / X) * np.exp(-((np.sqrt(X) - np.sqrt(X0)) ** 2) / (2 * V_s)) * ive(1, z)
     P = np.zeros(n + 1)
     P[1:-1] = sla.expm(Lop * (V_end - V_s)) @ P0[1:-1]
     # Clenshaw--Curtis weights (x) times dp/dx
@@ -163,6 +166,23 @@ def test_squared_bessel_reference():
         assert true_L1 <= tol + u and true_A <= tol + u, (tol, true_L1, true_A)
         assert float(est["L1"][-1, 0]) >= true_L1 - u
         assert float(est["elastic_area"][-1, 0]) >= true_A - u
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(4))
+def test_estimate_above_the_true_error_random_squared_bessel(seed):
+    # random slope r of B2 = (1 + r p / (2 p_bar)) dV/dzeta, load and tol; reference: the squared Bessel start
+    rng = np.random.default_rng(100 + seed)
+    r, pb, tol = float(rng.uniform(0.2, 3.0)), PB * float(rng.uniform(0.7, 2.0)), float(10.0 ** rng.uniform(-8, -5))
+    pdf, A_ref, F_ref = _besq_reference(pb, VMAX, n=160, V_start_frac=3e-3, e_k=50.0, L_k=45.0, r=r)
+    _, A_ref2, _ = _besq_reference(pb, VMAX, n=200, V_start_frac=1e-3, e_k=8.0, L_k=45.0, r=r)
+    u = max(abs(A_ref - A_ref2), 1e-11)
+    fp = pf.FokkerPlanckProblem(PSD, p_bar=pb, B2=lambda p, z: PSD.dV_dzeta(z) * (1 + r * p / (2 * pb)))
+    sol = pf.solve(fp, method="chebyshev", tol=tol)
+    true_A, true_L1 = abs(float(sol.contact_area[-1]) - A_ref), _l1(sol, pdf)
+    est = sol.info["error_estimate"]
+    assert true_L1 <= tol + u and true_A <= tol + u
+    assert float(est["L1"][-1, 0]) >= true_L1 - u and float(est["elastic_area"][-1, 0]) >= true_A - u
 
 
 def test_refuses_what_it_does_not_solve():
