@@ -172,3 +172,12 @@ def test_batch_scaling_quick(tmp_path):
         if r["method"] != "exact":
             # defaults: sines to ~1e-13, fv and mol to their documented ~1e-6 .. 1e-5 in |dA*|
             assert r["max_area_error"] < 1e-4 and r["default_over_1_thread"] > 0
+
+
+def test_general_engine_quick(tmp_path):
+    """The general-engine benchmark's quick mode: every method row present, chebyshev within its tol."""
+    rows = _module("general_engine").main(["--quick", "--output", str(tmp_path)])
+    assert len(_rows(tmp_path / "general_engine.csv")) == len(rows) >= 8
+    cheb = [r for r in rows if r["method"] == "chebyshev"]
+    assert cheb and all(r["L1"] <= float(r["setting"].split("=")[1]) for r in cheb)
+    assert "L1 <= 1e-06" in (tmp_path / "general_engine.md").read_text()
