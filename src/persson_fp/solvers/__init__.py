@@ -60,9 +60,6 @@ def get_solver(method: str | type[Solver]) -> type[Solver]:
     """
     if isinstance(method, type) and issubclass(method, Solver):
         return method
-    cls = _LOADED.get(method) if isinstance(method, str) else None
-    if cls is not None:  # (imported before: the dictionary look-up is all a repeated call costs)
-        return cls
     if not isinstance(method, str) or method not in METHODS:
         raise ValueError(f"method must be 'auto', one of {sorted(METHODS)} or a Solver subclass, got {method!r}")
     if method in EXTRAS:
@@ -73,6 +70,9 @@ def get_solver(method: str | type[Solver]) -> type[Solver]:
             raise ImportError(
                 f"method {method!r} needs the optional package {pkg!r}: pip install 'persson-fp[{extra}]'"
             ) from err
+    loaded = _LOADED.get(method)
+    if loaded is not None:  # (imported before: a dictionary look-up is all a repeated call costs)
+        return loaded
     module, cls = METHODS[method].split(":")
     try:
         mod = importlib.import_module(module)
