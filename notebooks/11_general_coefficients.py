@@ -104,8 +104,9 @@ plt.show()
 # %% [markdown]
 # ## `method="auto"`: an accuracy, not a method
 # Where a closed form exists `auto` takes the sine series (that closed form summed to `tol`) and reports the
-# true error; where none exists it takes `fv` on the general engine at a resolution from a measured error
-# model and refines until its own estimate meets `tol`.
+# true error; for coefficients of the form B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta (the drift model below) it
+# takes `chebyshev` (spectral in p, exact in V, refined until its own estimate meets `tol`); otherwise `fv` on
+# the general engine at a resolution from a measured error model, refined until its own estimate meets `tol`.
 
 # %%
 scenes = {
@@ -130,7 +131,7 @@ for name, pr in scenes.items():
 assert abs(order_p - 2.0) < 0.1 and abs(order_t - 2.0) < 0.15
 for _name, _method, _kind, L1, area, _ in rows:
     assert L1 <= 1e-4 and area <= 1e-4
-assert rows[0][1] == "sines" and rows[2][1] == "fv"
+assert rows[0][1] == "sines" and rows[2][1] == "chebyshev"
 # every model differs from the homogenised theory by far more than its own error bar: the coefficients matter,
 # the numbers resolve them; a downward drift loses contact (B1 < 0 carries pressures towards the wall)
 A = {k: float(v[0][-1]) for k, v in results.items()}

@@ -24,7 +24,7 @@ SCENES = {
     "P0 with a fudge factor": (lambda: pf.ContactProblem.reference(fudge="YP08"), "sines"),
     "constant hardness": (lambda: pf.ContactProblem.reference(hardness=0.075, fudge="YP08"), "sines"),
     "moving hardness": (_moving, "fv"),
-    "general coefficients": (_general, "fv"),
+    "general coefficients": (_general, "chebyshev"),  # B2, B1 = functions of p x dV/dzeta: the spectral engine
 }
 
 

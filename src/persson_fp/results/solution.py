@@ -184,7 +184,7 @@ class Solution:
         """
         zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
         P0 = np.asarray(P0, dtype=float).reshape(zeta.size, problem.n_loads, -1)
-        if not np.all(np.isfinite(P0)):
+        if not np.isfinite(P0).all():
             raise InstabilityError(
                 f"{method}: the solution holds NaN or inf values -- the scheme went unstable; "
                 "reduce the step (n_steps) or use an implicit scheme"
@@ -250,8 +250,8 @@ class Solution:
 
     def _moment(self, k: int) -> np.ndarray:
         """int p^k P0 dp on the grid, shape (n_zeta, n_loads)."""
-        w = _station_axis(self.weights * self.p**k)
-        return np.sum(self.P0_all * w, axis=-1)
+        w = _station_axis(self.weights * (self.p if k == 1 else self.p**k))
+        return (self.P0_all * w).sum(axis=-1)
 
     @property
     def elastic_area_all(self) -> np.ndarray:

@@ -10,6 +10,8 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING
 
+from persson_fp.solvers._threads import blas_threads as _limit
+from persson_fp.solvers._threads import check_blas_threads
 from persson_fp.solvers.base import SHARED_KNOBS, Solver, SolverOutput
 
 if TYPE_CHECKING:
@@ -28,6 +30,7 @@ METHODS = {
     "fipy": "persson_fp.solvers.backends.fipy:FiPySolver",
     "chapman-kolmogorov": "persson_fp.solvers.chapman_kolmogorov:ChapmanKolmogorovSolver",
     "monte-carlo": "persson_fp.solvers.monte_carlo:MonteCarloSolver",
+    "chebyshev": "persson_fp.solvers.chebyshev:ChebyshevSolver",
 }
 """Method name -> "module:Class"."""
 
@@ -67,6 +70,9 @@ def get_solver(method: str | type[Solver]) -> type[Solver]:
             raise ImportError(
                 f"method {method!r} needs the optional package {pkg!r}: pip install 'persson-fp[{extra}]'"
             ) from err
+    loaded = _LOADED.get(method)
+    if loaded is not None:  # (imported before: a dictionary look-up is all a repeated call costs)
+        return loaded
     module, cls = METHODS[method].split(":")
     try:
         mod = importlib.import_module(module)
@@ -74,7 +80,12 @@ def get_solver(method: str | type[Solver]) -> type[Solver]:
         if err.name == module:
             raise NotImplementedError(f"method {method!r} is not built yet") from err
         raise
-    return getattr(mod, cls)
+    _LOADED[method] = getattr(mod, cls)
+    return _LOADED[method]
+
+
+_LOADED: dict = {}
+"""Method name -> solver class, for the methods imported so far."""
 
 
 def available_methods() -> list[str]:
@@ -140,7 +151,9 @@ def solve(
     blas_threads : int or None, default 1
         BLAS threads during the solve (through threadpoolctl, when installed).  One by default: the
         solvers' products are narrow, and a multithreaded BLAS only oversubscribes the cores on them
-        (``benchmarks/batch_scaling.py``); ``None`` leaves the BLAS library's own setting.
+        (``benchmarks/batch_scaling.py``); ``None`` leaves the BLAS library's own setting.  A solve whose
+        (loads x stations) is at most the method's ``SMALL_BATCH`` (sines: 1) leaves the setting alone: its
+        products are below OpenBLAS's threading thresholds, and setting the pools costs more than such a solve.
     **options
         Shared knobs (``n_p``, ``n_steps``, ``rtol``, ``atol``, ``scheme``) and
         the method's own options (``get_solver(method).OPTIONS``).
@@ -164,9 +177,6 @@ def solve(
     SolverError
         The result breaks an invariant (with ``check=True``).
     """
-    from persson_fp.solvers._threads import blas_threads as _limit
-    from persson_fp.solvers._threads import check_blas_threads
-
     n_threads = check_blas_threads(blas_threads)
     if isinstance(method, str) and method == "auto":
         from persson_fp.solvers.auto import solve_auto
@@ -194,5 +204,9 @@ def solve(
     solver = get_solver(method)(
         problem, zeta_out=zeta_out, check=check, max_memory=max_memory, max_time=max_time, **options
     )
+    if problem.n_loads * solver.zeta_out.size <= getattr(
+        solver, "SMALL_BATCH", 0
+    ):  # products too small for a second BLAS
+        return solver.run()  # thread: skip threadpoolctl's set/restore (~20 us a call, more than such a solve)
     with _limit(n_threads):
         return solver.run()

@@ -7,6 +7,8 @@ r"""``method="auto"`` and ``tol=``: ask for an accuracy, not a method.
   / strip series summed to ``tol`` -- the fastest method at every tolerance in ``benchmarks/results/
   speed_accuracy.md`` and ``plasticity.md``.  Its error is then measured against :func:`persson_fp.exact`.  If the
   first station is too narrow for the series (a ``ValueError`` from sines), ``"fv"`` with a resolution for ``tol``.
+* **General coefficients B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta, no hardness**: ``"chebyshev"``
+  (:mod:`persson_fp.solvers.chebyshev`), which meets ``tol`` by its own estimate; other coefficients fall through:
 * **No closed form** (a scale-dependent hardness, general coefficients): ``"fv"`` on the front-fixed engine,
   n_p = n_steps = n from the error models measured in ``benchmarks/plasticity.py`` and ``benchmarks/auto.py``
   (estimate ~ 2e-2 / n^2 for a moving wall, ~ 50 / n^2 for general coefficients, with n cells and n steps), refined
@@ -222,9 +224,38 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, ma
         except (ValueError, SolverError) as err:
             why = f"the sine series could not serve this scene ({err}); finite volumes with a resolution for tol"
             return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+    declined = ""
+    if problem.general and problem.hardness is None:  # (issue 21) the spectral engine, where it applies
+        try:
+            return _solve_chebyshev(problem, zeta_out, tol, budget)
+        except (ValueError, SolverError) as err:
+            declined = f"; method 'chebyshev' declined: {err}"
     what = "a scale-dependent hardness" if problem.moving_wall else "general Fokker-Planck coefficients"
     why = (
         f"no closed form ({what}): finite volumes on the front-fixed engine, n cells and n steps from the "
-        "measured error model C/n^2, checked by a half-resolution partner run"
+        f"measured error model C/n^2, checked by a half-resolution partner run{declined}"
     )
     return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+
+
+def _solve_chebyshev(problem, zeta_out, tol, budget):
+    """General coefficients B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta without a hardness: method "chebyshev"
+    (spectral in p, exact in V; its own loop meets ``tol`` -- 5-25 ms for 1e-4 ... 1e-10 on the reference problem
+    in ``benchmarks/results/general_engine.md``, where fv needs seconds for 1e-6)."""
+    from persson_fp.solvers.chebyshev import ChebyshevSolver
+
+    t0 = time.perf_counter()
+    sol = ChebyshevSolver(problem, zeta_out=zeta_out, tol=min(tol, 1e-1), **budget).run()
+    L1, area, kind = _errors(sol)
+    sol.info["auto"] = {
+        "method": "chebyshev",
+        "why": "general coefficients of the form b(p) dV/dzeta: Chebyshev collocation in p, exact exponentials in V, "
+        "degree and start refined until the estimate (3/4-degree and 4 V0 partners) meets tol",
+        "tol": tol,
+        "L1": L1,
+        "area_error": area,
+        "kind": kind,
+        "attempts": [{"options": {"tol": tol}, "L1": L1, "area_error": area, "wall_time": sol.wall_time}],
+        "total_time": time.perf_counter() - t0,
+    }
+    return sol

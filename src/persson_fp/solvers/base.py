@@ -286,6 +286,8 @@ class Solver:
         the methods that handle the load.
         """
         lo, hi = LOAD_RATIO_RANGE.get(self.name, (0.0, np.inf))
+        if lo <= 0.0 and hi == np.inf:  # no range: every positive load is in it (and nothing to compute)
+            return
         pr = self.problem
         scale = pr.tau_max if pr.has_closed_form else pr.V_max  # (no exact tau for a moving wall with S)
         ratio = pr.p_bar / np.sqrt(scale)

@@ -131,6 +131,7 @@ class SineSeriesSolver(Solver):
     name = "sines"
     SUPPORTS = frozenset({"hardness"})
     OPTIONS = {"n_p": None, "n_eval": None, "tol": 1e-13, "rtol": 1e-14, "k_domain": 10.0}
+    SMALL_BATCH = 1  # (one load at one station: a vector-matrix product, below OpenBLAS's threading thresholds)
 
     def validate(self) -> None:
         o = self.opts
