@@ -158,3 +158,12 @@ def test_exact_full_contact_at_every_load_names_the_cause():
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # an ordinary load is quiet
         pf.exact(pf.ContactProblem.reference(p_bar_ratio=[0.5, 3.0]))
+
+
+@pytest.mark.parametrize("method", ["auto", "fv", "mol"])
+@pytest.mark.parametrize("tol", [5e-324, 1e-16])
+def test_tol_below_round_off_is_a_value_error(method, tol):
+    """pf.solve(..., tol=5e-324) raised OverflowError (a resolution of inf cells); tol is now checked against
+    [1e-15, 0.1] before any resolution is derived from it."""
+    with pytest.raises(ValueError, match=r"tol must lie in \[1e-15, 0.1\]"):
+        pf.solve(pf.ContactProblem.reference(), method, tol=tol)

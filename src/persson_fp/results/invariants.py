@@ -214,6 +214,8 @@ def _negative_mass(sol, P):
     w = np.asarray(sol.weights, dtype=float)
     w = w[:, None, :] if w.ndim == 2 else w  # (n_zeta, n_p) weights of a moving grid: one row per station
     return np.sum(np.maximum(-P, 0.0) * np.asarray(w, dtype=float), axis=-1)
+
+
 def _lo_hi(a):
     """(min, max) of an array as floats; one element is read directly (numpy's reductions cost ~1 us each)."""
     if a.size == 1:

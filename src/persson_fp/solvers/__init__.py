@@ -194,7 +194,7 @@ def solve(
                 problem,
                 method,
                 zeta_out,
-                check_float(tol, "tol", 0.0, 1e-1),
+                check_float(tol, "tol", 1e-15, 1e-1, lo_open=False),  # below 1e-15: round-off
                 max_memory=max_memory,
                 max_time=max_time,
                 **options,

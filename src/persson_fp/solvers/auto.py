@@ -210,7 +210,7 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, ma
     """``method="auto"``: the cheapest way to ``tol`` (module docstring)."""
     from persson_fp.solvers.base import check_float
 
-    tol = check_float(tol, "tol", 0.0, 1e-1)
+    tol = check_float(tol, "tol", 1e-15, 1e-1, lo_open=False)  # no double-precision result is checkable below
     budget = {"max_memory": max_memory, "max_time": max_time}
     if options:
         raise TypeError(f"method 'auto' chooses the resolution itself; it takes only tol and zeta_out, got {options}")

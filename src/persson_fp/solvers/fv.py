@@ -231,7 +231,7 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
         o["rannacher_steps"] = check_int(o["rannacher_steps"], "rannacher_steps", 0)
         o["check_every"] = check_int(o["check_every"], "check_every", 1)
         if o["tol"] is not None:
-            o["tol"] = check_float(o["tol"], "tol", 0.0, 1.0)
+            o["tol"] = check_float(o["tol"], "tol", 1e-15, 1.0, lo_open=False)
         self.validate_start_options()
 
     # -- set-up --------------------------------------------------------------------------------

@@ -164,7 +164,7 @@ class MethodOfLinesSolver(Solver):
         if o["initial"] not in ("exact", "delta"):
             raise ValueError(f"initial must be 'exact' or 'delta', got {o['initial']!r}")
         if o["tol"] is not None:
-            o["tol"] = check_float(o["tol"], "tol", 0.0, 1.0)
+            o["tol"] = check_float(o["tol"], "tol", 1e-15, 1.0, lo_open=False)
         if o["initial"] == "delta" and (o["zeta0"] is not None or o["tau0_fraction"] is not None):
             raise ValueError("zeta0 / tau0_fraction apply to initial='exact' only")
         o["k_domain"] = check_k_domain(o["k_domain"], 1e3)
