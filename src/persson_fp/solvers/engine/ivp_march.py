@@ -35,6 +35,8 @@ def make_solver(method: str, fun, t0: float, y0, t_bound: float, blocks=None, **
     :func:`shared_block_lu` factors only K.  Otherwise SuperLU in natural order (:func:`natural_order_lu`).
     """
     solver = getattr(si, method)(fun, t0, y0, t_bound, **kw)
+    if method == "BDF":  # scipy allocates the difference table with np.empty and reads rows it has not written yet
+        solver.D[2:] = 0.0  # (harmless garbage, but inf - inf under np.seterr(invalid="raise")); zero them
     if method in ("BDF", "Radau") and issparse(getattr(solver, "J", None)):
         if blocks is not None:
             shared_block_lu(solver, *blocks)
