@@ -203,6 +203,8 @@ def test_calibration_vs_bem_quick(tmp_path):
     assert all(0.4 < r["gamma"] < 0.65 for r in area if r["model"] == "YP08 fitted")
     assert speed[0]["points"] == 21 and speed[0]["nfev"] < 40
     assert [r["draws"] for r in cov] == [5, 5] and (tmp_path / "calibration_coverage.csv").exists()
+
+
 def test_general_engine_quick(tmp_path):
     """The general-engine benchmark's quick mode: every method row present, chebyshev within its tol."""
     rows = _module("general_engine").main(["--quick", "--output", str(tmp_path)])
