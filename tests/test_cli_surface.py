@@ -1,5 +1,6 @@
 """``persson-fp surface``: a height map and a contact.engineering export in, CSV with units and PNG out."""
 
+import json
 import os
 
 import numpy as np
@@ -19,9 +20,12 @@ def _bem_map(N=128):
 
 
 def _read_csv(path):
+    """The plain CSV (no comment lines: any CSV reader takes it) and its metadata from the JSON beside it."""
     lines = open(path).read().splitlines()
-    header = [ln for ln in lines if ln.startswith("#")]
-    rows = [ln.split(",") for ln in lines if not ln.startswith("#")]
+    assert not any(ln.startswith("#") for ln in lines)
+    rows = [ln.split(",") for ln in lines]
+    meta = json.load(open(os.path.join(os.path.dirname(path), "surface.json")))
+    header = [*meta["surface"], "units: " + meta["units"], meta["columns"]]
     return header, rows[0], np.array(rows[1:], dtype=float)
 
 
@@ -91,3 +95,14 @@ def test_surface_command_bad_arguments_one_line_exit_2(tmp_path, capsys, argv, m
     err = capsys.readouterr().err.strip()
     assert rc == 2
     assert len(err.splitlines()) == 1 and message in err and "Traceback" not in err
+
+
+def test_surface_csv_is_read_by_plain_pandas(tmp_path):
+    """The table has no comment lines (its metadata is in surface.json): pandas' default reader gets every column."""
+    pd = pytest.importorskip("pandas")
+    np.save(tmp_path / "h.npy", _bem_map())
+    assert main(["surface", str(tmp_path / "h.npy"), "--size", "1", "--periodic", "--n-loads", "5",
+                 "--output", str(tmp_path / "o")]) == 0  # fmt: skip
+    df = pd.read_csv(tmp_path / "o" / "surface.csv")
+    assert len(df) == 5 and {"p_bar", "A_WM17", "u_YP08", "K_none", "Q_em_Xu24"} <= set(df.columns)
+    assert json.load(open(tmp_path / "o" / "surface.json"))["E_star"] > 0

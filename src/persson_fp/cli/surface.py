@@ -11,6 +11,7 @@ Phys. J. E 31 (2010) 159) and Barber's conductance (Proc. R. Soc. Lond. A 459 (2
 
 from __future__ import annotations
 
+import json
 import os
 import time
 
@@ -115,21 +116,24 @@ def cmd_surface(args) -> int:
     print(f"{args.n_loads} loads x {len(FUDGES)} models in {wall * 1e3:.1f} ms")
     out = args.output
     _make_parent(os.path.join(out, "surface.csv"), "--output")
-    _note_replaced(out, ["surface.csv", "surface.png"])
+    _note_replaced(out, ["surface.csv", "surface.json", "surface.png"])
     path = os.path.join(out, "surface.csv")
+    meta = {
+        "surface": desc.splitlines(),
+        "E_star": E,
+        "weighting": args.weighting,
+        "units": "p_bar in pressure, A dimensionless, u in length, K in pressure/length (the file's length unit)",
+        "columns": (
+            "A_*, u_*, K_*: contact area, mean separation, stiffness per fudge model; gap_mean: mean of the gap "
+            "distribution P(u) (length); Q_cj, Q_em: leak rate of a square seal (critical junction, effective medium; "
+            f"length^3/time) for viscosity {args.viscosity!r} and pressure drop {args.pressure_drop!r}; C_rho: "
+            "electrical conductance per area times (rho1 + rho2) = 2K/E* (1/length; Barber 2003)"
+        ),
+    }
+    with _atomic_open(os.path.join(out, "surface.json"), "w") as fh:  # metadata beside a plain CSV
+        json.dump(meta, fh, indent=1)
+        fh.write("\n")
     with _atomic_open(path, "w", newline="") as fh:
-        for line in desc.splitlines():
-            fh.write(f"# {line}\n")
-        fh.write(
-            f"# E* = {E!r} (pressure); energy weighting {args.weighting!r}; units: p_bar in pressure, "
-            "A dimensionless, u in length, K in pressure/length (the file's length unit)\n"
-        )
-        fh.write(
-            f"# gap_mean: mean of the gap distribution P(u) (length); Q_cj, Q_em: leak rate of a square seal "
-            f"(critical junction, effective medium; length^3/time) for viscosity {args.viscosity!r} and pressure drop "
-            f"{args.pressure_drop!r}; C_rho: electrical conductance per area times (rho1 + rho2) = 2K/E* (1/length; "
-            "Barber 2003)\n"
-        )
         cols = ["p_bar", "p_bar_over_sqrtV"]
         cols += [f"A_{n}" for n in FUDGES] + [f"u_{n}" for n in FUDGES] + [f"K_{n}" for n in FUDGES]
         cols += [f"{c}_{n}" for c in ("gap_mean", "Q_cj", "Q_em", "C_rho") for n in FUDGES]
@@ -140,7 +144,7 @@ def cmd_surface(args) -> int:
             vals += [d[n][j] for d in (gaps, Q_cj, Q_em, C) for n in FUDGES]
             fh.write(",".join(f"{v:.12g}" for v in vals) + "\n")
     _save_figure(_figure(psd, ratio, p_bar, A, u, K, surf.source), os.path.join(out, "surface.png"), dpi=110)
-    print(f"written {path} and surface.png")
+    print(f"written {path} (metadata in surface.json) and surface.png")
     return 0
 
 
