@@ -167,3 +167,12 @@ def test_tol_below_round_off_is_a_value_error(method, tol):
     [1e-15, 0.1] before any resolution is derived from it."""
     with pytest.raises(ValueError, match=r"tol must lie in \[1e-15, 0.1\]"):
         pf.solve(pf.ContactProblem.reference(), method, tol=tol)
+
+
+@pytest.mark.parametrize("method", ["fv", "sines"])
+def test_an_ignored_knob_out_of_range_is_still_an_error(method):
+    """`atol=-1` with fv (which ignores atol) only warned; a value outside a knob's range is wrong for every method."""
+    with pytest.raises(ValueError, match=r"atol must lie in \[0, inf\]"):
+        pf.solve(pf.ContactProblem.reference(), method, atol=-1)
+    with pytest.warns(UserWarning, match="ignores the option 'atol'"):
+        pf.solve(pf.ContactProblem.reference(), method, atol=1e-8)

@@ -99,6 +99,15 @@ MIN_SIGMA_CELLS = 1.0
 than a cell); the start-up is placed at sqrt(tau0) >= 2 dp where the first station allows it."""
 
 
+_IGNORED_RANGES = {
+    "rtol": lambda v, k: check_float(v, k, 0.0, 1.0),
+    "atol": lambda v, k: check_float(v, k, 0.0, lo_open=False),
+    "n_p": lambda v, k: check_int(v, k, 1),
+    "n_steps": lambda v, k: check_int(v, k, 1),
+}
+"""The ranges of the shared knobs, checked even where a method ignores the knob (``atol=-1`` is wrong anywhere)."""
+
+
 @dataclass
 class SolverOutput:
     """What a method's ``_solve`` hands back to :meth:`Solver.run`.
@@ -172,6 +181,7 @@ class Solver:
             if key in known:
                 continue
             if key in SHARED_KNOBS:
+                _IGNORED_RANGES.get(key, lambda v, k: v)(options[key], key)  # out of range: an error all the same
                 warnings.warn(f"method {self.name!r} ignores the option {key!r}", UserWarning, stacklevel=3)
                 options.pop(key)
                 continue
