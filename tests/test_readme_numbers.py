@@ -141,3 +141,15 @@ def test_mol_runs_1e4_loads_at_the_default_budget_in_the_results():
     """mol's memory model follows its traced peaks: 1000 and 1e4 loads run at the default max_memory."""
     assert _batch("mol", 1000, "time_1_thread") > 0 and _batch("mol", 10_000, "time_1_thread") > 0
     assert _batch("mol", 10_000, "peak_MB") < 300
+
+
+def test_readme_states_the_accuracy_of_an_earlier_station():
+    """The README's figures for an earlier output station are what fv's defaults give (recomputed here: 2 ms)."""
+    import persson_fp as pf
+
+    m = re.search(r"L1 ([\d.e-]+) at ζ = 2 against ([\d.e-]+) at ζ_max", _text("README.md"))
+    assert m, "the sentence on earlier stations is no longer in README.md"
+    pr = pf.ContactProblem.reference()
+    L1 = pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).compare().L1.ravel()
+    assert [_sig(float(g), 2) for g in m.groups()] == [_sig(x, 2) for x in L1]
+    assert pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).error_estimate["L1"].shape == (2,)
