@@ -152,4 +152,4 @@ def test_readme_states_the_accuracy_of_an_earlier_station():
     pr = pf.ContactProblem.reference()
     L1 = pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).compare().L1.ravel()
     assert [_sig(float(g), 2) for g in m.groups()] == [_sig(x, 2) for x in L1]
-    assert pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).error_estimate["L1"].shape == (2,)
+    assert pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).error_estimate["L1"].shape == (2, 1)  # (station, load)
