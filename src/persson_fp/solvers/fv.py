@@ -80,18 +80,20 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
 from persson_fp.solvers.engine import estimate as moving_wall_estimate
+from persson_fp.solvers.fv_dst import _amplification, _growth, dst_eigenvalues  # noqa: F401
 from persson_fp.solvers.fv_operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
     _BDF2_A,
     _BDF2_B,
     _BDF2_W,
     _GAMMA,
+    COUPLINGS,
+    LINALGS,
+    SCHEMES,
     SPACES,
     _tri_matvec,
     _Tridiag,
@@ -102,37 +104,12 @@ from persson_fp.solvers.fv_operators import (  # noqa: F401  (re-exported: the o
     rhs,
     wall_flux,
 )
-from persson_fp.solvers.fv_spectral import SpectralPath, _amplification, _growth, dst_eigenvalues  # noqa: F401
+from persson_fp.solvers.fv_spectral import SpectralPath
 from persson_fp.solvers.fv_stepping import STEPPINGS, SteppingNodes
 from persson_fp.theory.fudge import NoFudge
 from persson_fp.theory.image import tail_mass
 
 __all__ = ["FiniteVolumeSolver", "SCHEMES", "rhs", "banded_operator", "apply_operator", "dst_eigenvalues"]
-
-
-# -- the scheme table: a scheme is data -----------------------------------------------------------
-@dataclass(frozen=True)
-class _Scheme:
-    theta: float
-    """Implicitness θ of the θ-step (TR-BDF2: θ of its first stage)."""
-    order: int
-    """Order in τ."""
-    l_stable: bool
-    coupling: str
-    """Default coupling of the fudge factor (see the module docstring)."""
-
-
-SCHEMES = {
-    "explicit": _Scheme(theta=0.0, order=1, l_stable=False, coupling="lagged"),
-    "implicit": _Scheme(theta=1.0, order=1, l_stable=True, coupling="lagged"),
-    "crank-nicolson": _Scheme(theta=0.5, order=2, l_stable=False, coupling="predictor"),
-    "rannacher": _Scheme(theta=0.5, order=2, l_stable=False, coupling="predictor"),
-    "tr-bdf2": _Scheme(theta=0.5, order=2, l_stable=True, coupling="predictor"),
-}
-"""Scheme name -> θ, order in τ, L-stability and default coupling."""
-
-COUPLINGS = ("auto", "lagged", "predictor", "picard")
-LINALGS = ("auto", "dst", "banded")
 
 
 class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
