@@ -63,17 +63,14 @@ import time
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.optimize import brentq
 from scipy.special import erf
 
 from persson_fp.results.solution import SolverError
 from persson_fp.solvers.base import _HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
 from persson_fp.solvers.engine import ivp_march as _ivp_march
 from persson_fp.solvers.engine import lines as moving_wall_lines
-from persson_fp.solvers.mol_grid import MOLSystem, laplacian, laplacian_readable, quadrature_weights
+from persson_fp.solvers.mol_grid import MOLSystem, laplacian, laplacian_readable, quadrature_weights, start_pdf, start_V
 from persson_fp.theory.fudge import NoFudge
-from persson_fp.theory.image import image_pdf
-from persson_fp.theory.strip import strip_pdf
 
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
 
@@ -236,12 +233,12 @@ class MethodOfLinesSolver(Solver):
             z0, V0, tau0_l = self._start(h)
             if o["variable"] == "tau":
                 tau0 = float(np.max(tau0_l))  # common tau0; each load's V_j0 from the exact map
-                V0_l = self._V_at_tau(tau0)
-                P0 = self._start_pdf(pi[None, :], pr.p_bar[:, None], tau0)
+                V0_l = start_V(self.problem, tau0)
+                P0 = start_pdf(self.problem, pi[None, :], pr.p_bar[:, None], tau0)
                 info["zeta0"] = self.zeta_from_V(V0_l) if not nofudge else np.full(nl, z0)
             else:
                 tau0 = None
-                P0 = self._start_pdf(pi[None, :], pr.p_bar[:, None], tau0_l[:, None])
+                P0 = start_pdf(self.problem, pi[None, :], pr.p_bar[:, None], tau0_l[:, None])
                 V0_l = np.full(nl, V0)
                 info["zeta0"] = np.full(nl, z0)
         else:
@@ -338,24 +335,6 @@ class MethodOfLinesSolver(Solver):
 
         y0 = np.concatenate([P0.ravel(), V0_l])
         return MOLSystem(fun, fun_readable, jac, y0, t0, t1, nl, m, True)
-
-    def _V_at_tau(self, tau0: float) -> np.ndarray:
-        """Complete-contact variance at which each load's exact effective variance equals ``tau0``."""
-        pr = self.problem
-        if isinstance(pr.fudge, NoFudge):
-            return np.full(pr.n_loads, tau0)
-        if pr.hardness is None:  # the inverse of the same effective-variance table, all loads at once (~1e-13)
-            return pr.V_of_tau_each(np.full(pr.n_loads, float(tau0)))
-        S1 = float(pr.fudge.S(np.array(1.0)))
-        out = np.empty(pr.n_loads)
-        V_max = float(pr.V(pr.zeta_max))
-        for j, pb in enumerate(pr.p_bar):
-            if pb / np.sqrt(2.0 * tau0) >= 6.0:  # A* = 1 to round-off until tau0: tau = S(1) V exactly
-                out[j] = tau0 / S1
-                continue
-            sub = pr.with_loads(pb)
-            out[j] = brentq(lambda v, s=sub: float(s.tau_of_V(v)[0]) - tau0, 0.0, 2 * V_max, xtol=1e-300, rtol=1e-15)
-        return out
 
     # -- the solve --------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
@@ -499,10 +478,3 @@ class MethodOfLinesSolver(Solver):
         plastic = None if first.plastic_area is None else np.concatenate([out.plastic_area for out in outs], axis=1)
         P0 = np.concatenate([out.P0 for out in outs], axis=1)
         return SolverOutput(p=first.p, P0=P0, weights=first.weights, kind="point", info=info, plastic_area=plastic)
-
-    def _start_pdf(self, p, p_bar, tau):
-        """The exact PDF at the start: the image solution, or the strip's with a constant hardness."""
-        hard = self.problem.hardness
-        if hard is None:
-            return image_pdf(p, p_bar, tau)
-        return strip_pdf(p, p_bar, float(hard.sigma(1.0)), tau)

@@ -1,5 +1,6 @@
 """The grid of the ``"mol"`` solver: finite-difference Laplacians (2nd and 4th order), their readable form, the
-quadrature weights of area and load, and the semi-discrete system (:class:`MOLSystem`).
+quadrature weights of area and load, the semi-discrete system (:class:`MOLSystem`), and the start from the
+exact solution (:func:`start_V`, :func:`start_pdf`).
 
 The driver that integrates the system in V with ``scipy.integrate.solve_ivp`` is :mod:`persson_fp.solvers.mol`.
 """
@@ -10,6 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.optimize import brentq
+
+from persson_fp.theory.fudge import NoFudge
+from persson_fp.theory.image import image_pdf
+from persson_fp.theory.strip import strip_pdf
 
 
 def laplacian(m: int, h: float, order: int = 2) -> sp.csr_matrix:
@@ -71,3 +77,30 @@ class MOLSystem:
     n_loads: int
     m: int
     augmented: bool
+
+
+def start_V(pr, tau0: float) -> np.ndarray:
+    """Complete-contact variance (pressure^2) at which each load of problem ``pr`` reaches the effective variance
+    ``tau0`` (the start of the march from the exact solution)."""
+    if isinstance(pr.fudge, NoFudge):
+        return np.full(pr.n_loads, tau0)
+    if pr.hardness is None:  # the inverse of the same effective-variance table, all loads at once (~1e-13)
+        return pr.V_of_tau_each(np.full(pr.n_loads, float(tau0)))
+    S1 = float(pr.fudge.S(np.array(1.0)))
+    out = np.empty(pr.n_loads)
+    V_max = float(pr.V(pr.zeta_max))
+    for j, pb in enumerate(pr.p_bar):
+        if pb / np.sqrt(2.0 * tau0) >= 6.0:  # A* = 1 to round-off until tau0: tau = S(1) V exactly
+            out[j] = tau0 / S1
+            continue
+        sub = pr.with_loads(pb)
+        out[j] = brentq(lambda v, s=sub: float(s.tau_of_V(v)[0]) - tau0, 0.0, 2 * V_max, xtol=1e-300, rtol=1e-15)
+    return out
+
+
+def start_pdf(pr, p, p_bar, tau):
+    """The exact PDF at the start: the image solution, or the strip's with a constant hardness."""
+    hard = pr.hardness
+    if hard is None:
+        return image_pdf(p, p_bar, tau)
+    return strip_pdf(p, p_bar, float(hard.sigma(1.0)), tau)
