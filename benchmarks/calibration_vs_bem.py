@@ -129,10 +129,10 @@ def transfer(psds, tables, models):
 
 
 def _clear_caches():
-    from persson_fp.theory import effective, separation
+    from persson_fp.theory import effective, separation_weight
 
     effective._CACHE.clear()
-    separation._WEIGHTS.clear()
+    separation_weight._WEIGHTS.clear()
 
 
 def speed(psds, tables, repeats):

@@ -103,7 +103,7 @@ def main(argv=None):
     n_loads = 1000 if args.quick else 100_000
     p = np.geomspace(1e-4, 1.0, n_loads) * G_BAR * E_STAR
     repeats = args.repeats or (3 if args.quick else 5)
-    from persson_fp.theory.separation import _WEIGHTS
+    from persson_fp.theory.separation_weight import _WEIGHTS
 
     def build():  # the per-surface rule and the model's g table (the effective-variance map stays cached)
         _WEIGHTS.clear()

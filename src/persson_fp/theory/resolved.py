@@ -37,7 +37,8 @@ from persson_fp._validate import as_positive_scalar
 from persson_fp.surfaces.psd import PSD
 from persson_fp.theory import fudge as _fudge
 from persson_fp.theory.effective import effective_variance
-from persson_fp.theory.separation import WEIGHTINGS, _weight
+from persson_fp.theory.separation import WEIGHTINGS
+from persson_fp.theory.separation_weight import _weight
 
 __all__ = ["MagnificationResolved"]
 
