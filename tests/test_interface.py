@@ -354,3 +354,20 @@ def test_separation_on_a_measured_spectrum():
 def test_gap_distribution_repr_states_both_means_and_the_cut():
     text = repr(pf.gap_distribution(pf.ContactProblem(PSD, 1.0, [0.002, 1e3], fudge="WM17")))
     assert "u_bar" in text and "truncated mass" in text and "complete contact" in text
+
+
+def test_bad_requests_are_value_errors_naming_the_cause(tmp_path):
+    """Found by fuzzing the new API: a sample count that cannot be allocated was a MemoryError, a general
+    Fokker-Planck problem was refused as 'a problem with a hardness', a folder given to calibrate as 'no such file'."""
+    pr = pf.ContactProblem.reference(fudge="WM17")
+    gd = pf.gap_distribution(pr)
+    for n in (10**12, 0, True, 2.5):
+        with pytest.raises(ValueError, match="n must be an integer in"):
+            gd.sample(n)
+    with pytest.raises(ValueError, match="exceed"):
+        pf.gap_distribution(pr.with_loads(np.full(3, 0.01))).sample(5 * 10**7)
+    assert gd.sample(1000, rng=1).shape == (1000,)
+    with pytest.raises(ValueError, match="general coefficients"):
+        pf.gap_distribution(pf.FokkerPlanckProblem(pr.psd, p_bar=0.01))
+    with pytest.raises(ValueError, match="is a folder"):
+        pf.calibrate(pr.psd, str(tmp_path))

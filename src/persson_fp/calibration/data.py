@@ -122,6 +122,8 @@ def _as_columns(data, quantities):
     """(columns mapping, source file or None) from any accepted table form."""
     if isinstance(data, (str, os.PathLike)):
         path = os.fspath(data)
+        if os.path.isdir(path):
+            raise ValueError(f"data: {path!r} is a folder; give the CSV file (columns p_bar, contact_area, ...)")
         if not os.path.isfile(path):
             raise ValueError(f"data: no such file: {path!r}")
         return _read_csv(path), path

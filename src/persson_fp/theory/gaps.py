@@ -40,6 +40,10 @@ __all__ = ["MagnificationResolved", "GapDistribution"]
 _SQ2PI = np.sqrt(2.0 * np.pi)
 
 
+MAX_SAMPLES = 10**8
+"""Most samples :meth:`GapDistribution.sample` draws in one call (over all loads; 0.8 GB)."""
+
+
 class GapDistribution:
     r"""Distribution of the interfacial gap :math:`P(u)` at each load (Almqvist et al., JMPS 59 (2011) 2355).
 
@@ -293,8 +297,12 @@ class GapDistribution:
         ndarray, length
             Shape ``(n_loads, n)``; exactly 0 with probability :attr:`contact_fraction`.
         """
-        if not isinstance(n, (int, np.integer)) or n < 1:
-            raise ValueError(f"n must be an integer >= 1, got {n!r}")
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n <= MAX_SAMPLES:
+            raise ValueError(f"n must be an integer in [1, {MAX_SAMPLES:.0e}] (samples per load), got {n!r}")
+        if n * self.n_loads > MAX_SAMPLES:
+            raise ValueError(
+                f"n x loads = {n * self.n_loads:.3g} samples exceed {MAX_SAMPLES:.0e} (8 bytes each); draw in batches"
+            )
         rng = np.random.default_rng(rng)
         out = np.zeros((self.n_loads, n))
         for j in range(self.n_loads):
