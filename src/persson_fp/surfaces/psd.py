@@ -385,6 +385,17 @@ class SelfAffinePSD(PSD):
             ) from None
 
     @classmethod
+    def _with_rms(cls, value, name: str, moment: str, H, q_l, q_r, q_s) -> SelfAffinePSD:
+        """The spectrum whose ``moment`` ("grad2" or "h2") is ``value``^2: C0 scaled from the unit-C0 spectrum."""
+        value = as_positive_scalar(value, name)
+        unit = cls._unit(H, q_l, q_r, q_s)
+        with np.errstate(over="ignore"):
+            C0 = np.float64(value) ** 2 / getattr(unit, moment)()
+        if not (np.isfinite(C0) and C0 > 0):
+            raise ValueError(f"{name} = {value!r} puts C0 out of floating-point range; rescale the units")
+        return cls(C0, H, q_l, q_r, q_s)
+
+    @classmethod
     def from_rms_slope(cls, rms_slope: float, H: float, q_l: float, q_r: float, q_s: float) -> SelfAffinePSD:
         """Spectrum whose rms slope over ``[q_l, q_s]`` is ``rms_slope``.
 
@@ -400,13 +411,7 @@ class SelfAffinePSD(PSD):
         SelfAffinePSD
             The spectrum with ``C0`` chosen for that slope.
         """
-        rms_slope = as_positive_scalar(rms_slope, "rms_slope")
-        unit = cls._unit(H, q_l, q_r, q_s)
-        with np.errstate(over="ignore"):
-            C0 = np.float64(rms_slope) ** 2 / unit.grad2()
-        if not (np.isfinite(C0) and C0 > 0):
-            raise ValueError(f"rms_slope = {rms_slope!r} puts C0 out of floating-point range; rescale the units")
-        return cls(C0, H, q_l, q_r, q_s)
+        return cls._with_rms(rms_slope, "rms_slope", "grad2", H, q_l, q_r, q_s)
 
     @classmethod
     def from_rms_height(cls, rms_height: float, H: float, q_l: float, q_r: float, q_s: float) -> SelfAffinePSD:
@@ -424,13 +429,7 @@ class SelfAffinePSD(PSD):
         SelfAffinePSD
             The spectrum with ``C0`` chosen for that height.
         """
-        rms_height = as_positive_scalar(rms_height, "rms_height")
-        unit = cls._unit(H, q_l, q_r, q_s)
-        with np.errstate(over="ignore"):
-            C0 = np.float64(rms_height) ** 2 / unit.h2()
-        if not (np.isfinite(C0) and C0 > 0):
-            raise ValueError(f"rms_height = {rms_height!r} puts C0 out of floating-point range; rescale the units")
-        return cls(C0, H, q_l, q_r, q_s)
+        return cls._with_rms(rms_height, "rms_height", "h2", H, q_l, q_r, q_s)
 
     @property
     def zeta_r(self) -> float:
