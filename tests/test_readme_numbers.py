@@ -36,6 +36,16 @@ def _batch(method, n, key):
     return float(row[key]) if row[key] else None
 
 
+def _overhead(row, fudge, key):
+    value = next(r for r in _rows("overhead.csv") if r["row"] == row and r["fudge"] == fudge)[key]
+    return value if key == "note" else float(value)
+
+
+def _whole_call_ratio(fudge):
+    note = _overhead("pf.solve(problem, 'sines'): whole call", fudge, "note")
+    return float(re.search(r"whole call / solver ([\d.]+)x", note).group(1))
+
+
 def _growth(method):
     return _batch(method, 10_000, "time_1_thread") / _batch(method, 1000, "time_1_thread")
 
@@ -47,6 +57,37 @@ def _sig(x, n):
 
 # (README file, pattern with one group per number, the numbers from the results, significant digits)
 CLAIMS = {
+    "overhead: pf.exact and with_loads (README)": (
+        "README.md",
+        r"for one load ([\d.]+) us, ([\d.]+)x a bare .*? A new load through `problem.with_loads\(p\)` ([\d.]+) us "
+        r"\(([\d.]+) us with YP08",
+        lambda: [
+            _overhead("pf.exact(problem).contact_area, one scalar load", "none", "seconds_per_call") * 1e6,
+            _overhead("pf.exact(problem).contact_area, one scalar load", "none", "ratio_to_erf"),
+            _overhead("pf.exact(problem.with_loads(p)).contact_area", "none", "seconds_per_call") * 1e6,
+            _overhead("pf.exact(problem.with_loads(p)).contact_area", "YP08", "seconds_per_call") * 1e6,
+        ],
+        3,
+    ),
+    "overhead: the whole sines call (README)": (
+        "README.md",
+        r"call costs ([\d.]+)x the solver's own time \(([\d.]+)x with YP08",
+        lambda: [
+            float(
+                re.search(
+                    r"whole call / solver ([\d.]+)x", _overhead("pf.solve(problem, 'sines'): whole call", f, "note")
+                ).group(1)
+            )
+            for f in ("none", "YP08")
+        ],
+        2,
+    ),
+    "batch: exact at 1e4 loads (README, closed form)": (
+        "README.md",
+        r"1e4 loads in ([\d.]+) ms \(`batch_scaling.py`\)",
+        lambda: [_batch("exact", 10_000, "time_1_thread") * 1e3],
+        3,
+    ),
     "speed: sines vs py-pde at 1e-3 (README)": (
         "README.md",
         r"`sines` ([\d.]+) ms \(YP08 ([\d.]+) ms\) against py-pde's explicit Euler through `pf.solve` ([\d.]+) ms "
