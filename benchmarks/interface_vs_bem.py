@@ -362,8 +362,8 @@ def _source(args, d):
             f"regenerated in `{rel}/` by `python benchmarks/interface_vs_bem.py --generate --N {meta['N']}"
             f"{' --quick' if args.quick else ''}` ({meta['packages']}; Tamaas contact {meta['tamaas_contact_s']} s, "
             f"Reynolds flow {meta['reynolds_flow_s']} s, adhesion {meta['adhesion_s']} s with "
-            f"{meta['adhesion_solves']} Tamaas solves, on this machine; agreement with the shipped CSVs in the "
-            "next table)."
+            f"{meta['adhesion_solves']} Tamaas solves: wall times of that one run on the shared 2-core machine; "
+            "agreement with the shipped CSVs in the next table)."
         )
         agreement = [
             "## Regenerated BEM data against the shipped data/bem",

@@ -192,3 +192,101 @@ def test_surface_from_modes_is_band_limited_and_has_the_shipped_rms():
     assert h512.std() == pytest.approx(hrms, rel=1e-12)
     with pytest.raises(ValueError, match="N must be"):
         surface_from_modes(path, 100)
+
+
+# -- the committed regenerated BEM data and what the README quotes from them ------------------------------------------
+RESULTS = os.path.join(BENCH, "results")
+GENERATED = os.path.join(RESULTS, "bem_generated")
+
+
+def _readme():
+    with open(os.path.join(os.path.dirname(BENCH), "README.md"), encoding="utf8") as fh:
+        return " ".join(fh.read().split())
+
+
+def _results(name):
+    with open(os.path.join(RESULTS, name), newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _sig(x, n=3):
+    return f"{float(f'{x:.{n}g}'):g}"
+
+
+@pytest.mark.skipif(not os.path.isdir(GENERATED), reason="no regenerated BEM data committed")
+def test_regenerated_bem_data_reproduce_the_shipped_data_and_the_readme_says_so():
+    import re
+
+    from _bem_generate import compare
+
+    _, worst = compare(GENERATED)
+    # the same solver on the same surfaces: the contact fields are identical; the flows and the adhesion loop agree
+    # to their solvers' tolerances (direct sparse solves; the loop stops at max |d sigma| < 1e-9 w/rho)
+    assert worst["contact_fraction"] == worst["mean_gap"] == worst["ks"] == 0.0
+    assert worst["sealed_same"] and worst["leak"] < 1e-6 and worst["pull_off"] < 1e-8
+    assert worst["mean_p_adhesion"] < 1e-8 and worst["fv_vs_reynoldsflow"] < 1e-6
+    m = re.search(
+        r"exactly in contact fraction, mean gap and gap histograms, to ([\d.e+-]+) in leak rate and to ([\d.e+-]+) "
+        r"in pull-off; the two Reynolds solvers agree to ([\d.e+-]+)",
+        _readme(),
+    )
+    assert m, "the README sentence on the regenerated BEM data is gone (update this test with it)"
+    assert m.group(1) == f"{worst['leak']:.1e}" and m.group(3) == f"{worst['fv_vs_reynoldsflow']:.1e}"
+    assert m.group(2) == f"{worst['pull_off']:.0e}"
+
+
+def test_readme_table_of_the_theory_against_bem_is_the_results_file():
+    """The README's per-load table (WM17, nominal spectrum) is interface_vs_bem_{gaps,leakage}.csv, means over seeds."""
+    import re
+
+    gaps = [r for r in _results("interface_vs_bem_gaps.csv") if r["model"] == "WM17" and r["spectrum"] == "nominal"]
+    leak = [r for r in _results("interface_vs_bem_leakage.csv") if r["model"] == "WM17" and r["spectrum"] == "nominal"]
+    loads = sorted({float(r["pbar_norm"]) for r in gaps})
+
+    def per_load(rows, f):
+        out = []
+        for p in loads:
+            v = [f(r) for r in rows if float(r["pbar_norm"]) == p]
+            v = [x for x in v if np.isfinite(x)]
+            out.append(_sig(np.mean(v)))
+        return out
+
+    expect = {
+        "gap distribution over the non-contact area: Kolmogorov–Smirnov distance": per_load(
+            gaps, lambda r: float(r["ks"])
+        ),
+        "mean separation ū / BEM mean gap": per_load(
+            gaps, lambda r: float(r["u_bar_theory"]) / float(r["mean_gap_bem"])
+        ),
+        "leak rate, effective medium / Reynolds flow on the BEM gaps": per_load(leak, lambda r: float(r["ratio_em"])),
+        "leak rate, critical junction / Reynolds flow on the BEM gaps": per_load(leak, lambda r: float(r["ratio_cj"])),
+    }
+    text = _readme()
+    assert "| p̄/(E*ḡ) | " + " | ".join(f"{p:g}" for p in loads) + " |" in text
+    for label, values in expect.items():
+        m = re.search(re.escape(f"| {label} |") + r"((?: [^|]+ \|){" + str(len(loads)) + "})", text)
+        assert m, f"README table row {label!r} is gone"
+        quoted = [_sig(float(v)) for v in m.group(1).strip(" |").split(" | ")]
+        assert quoted == values, f"{label}: README {quoted}, results {values}"
+
+
+def test_readme_speed_of_the_interface_quantities_is_the_results_file():
+    """The README quotes the timings of the committed interface_vs_bem.md (one run, medians of repeats)."""
+    import re
+
+    with open(os.path.join(RESULTS, "interface_vs_bem.md"), encoding="utf8") as fh:
+        md = fh.read()
+    m = re.search(
+        r"pdf on 200 points ([\d.]+) ms, a leak rate ([\d.]+) ms \(critical junction\) or ([\d.]+) ms \(effective "
+        r"medium\) per load; 1000 loads at once: gap distribution ([\d.]+) s, critical-junction leak rate ([\d.]+) s, "
+        r"effective medium ([\d.]+) s",
+        _readme(),
+    )
+    assert m, "the README sentence on the interface timings is gone"
+    r = re.search(
+        r"200 points, one load: ([\d.]+) ms\n- leak rate, one load: critical junction ([\d.]+) ms, effective medium "
+        r"([\d.]+) ms\n- 1000 loads: gap distribution ([\d.]+) s, leak rate: critical junction ([\d.]+) s, effective "
+        r"medium ([\d.]+) s",
+        md,
+    )
+    assert r and m.groups() == r.groups()
