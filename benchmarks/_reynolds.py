@@ -14,7 +14,9 @@ the harmonic mean 2 c_a c_b / (c_a + c_b) of the cell conductances (exact for tw
 either cell is blocked; a reservoir face sits half a cell from the cell centre, so its conductance is 2 c.  Only the
 open clusters that touch both reservoirs carry a net flow (any other cluster is at the pressure of the reservoir it
 touches, or carries nothing); they are found with a graph search first, so the linear system is non-singular, and it
-is solved directly (SuperLU): the flux leaving the inlet equals the flux entering the outlet to round-off.
+is solved directly (SuperLU): the flux leaving the inlet equals the flux entering the outlet to round-off (1e-12 of Q
+on the BEM gap fields up to p̄/(E*ḡ) = 0.1; ~1e-8 near percolation, where Q is ~1e-7 of the open-channel flow and the
+reservoir-face pressure differences it comes from are that small a fraction of the pressure drop).
 
 Returned Q is the volume flow rate through the whole cross-section (m^3/s for a length L); for a square of side L the
 flow per unit width per unit pressure gradient is K = Q / pressure_drop (what ``data/bem/leakage_H0.8.csv`` calls K).
