@@ -1,7 +1,7 @@
 """What happens in the gaps: Persson's theory against boundary-element gap fields, leak rates and adhesion.
 
-Reference data (shipped in data/bem, made with Tamaas 2.9.0 on the H = 0.8 surfaces, L = 1, E* = 1, rms slope 0.1,
-q_l = 2 pi, q_r = 4 q_l, q_s = 64 q_l; N = 512, seeds 1-3, p_bar/(E* g) in [0.005, 0.5]):
+Reference data (H = 0.8 surfaces of data/bem, L = 1, E* = 1, rms slope 0.1, q_l = 2 pi, q_r = 4 q_l, q_s = 64 q_l;
+N = 512, seeds 1-3, p_bar/(E* g) in [0.005, 0.5]), Tamaas 2.9.0 boundary elements:
 
 - ``gap_histograms_H0.8.csv``: the gap over the non-contact area.  Theory: ``pf.gap_distribution`` restricted to
   u > 0, renormalised; the Kolmogorov-Smirnov distance to the BEM histogram's CDF at its 61 bin edges.
@@ -10,10 +10,14 @@ q_l = 2 pi, q_r = 4 q_l, q_s = 64 q_l; N = 512, seeds 1-3, p_bar/(E* g) in [0.00
 - ``adhesion_exponential_H0.8_seed1.csv``: exponential attraction w = 1e-5 and 3e-6, rho = 8e-3.  Theory:
   ``pf.adhesive_contact`` (DMT): p_att at the BEM's repulsive pressures, and the pull-off stress.
 
-The BEM data were not regenerated here (Tamaas and reynoldsflow are optional and not installed): the shipped CSVs
-are the reference.  Also timed: a gap distribution on 200 points and a leak rate per load, and 1000 loads at once.
+``--generate`` (needs the optional extra: ``pip install .[bem]``, Tamaas and reynoldsflow) regenerates these three
+files from the surfaces' Fourier modes (``_bem_generate.py``: Tamaas contact, gap statistics, Reynolds flow with
+``reynoldsflow`` and with the finite-volume solver of ``_reynolds.py``, the adhesion loop of ``_bem_tamaas.py``)
+into ``<output>/bem_generated/`` and compares them with the shipped CSVs.  The theory tables then use the generated
+files wherever ``<output>/bem_generated/`` holds them, the shipped CSVs otherwise (the .md says which).  Also timed:
+a gap distribution on 200 points and a leak rate per load, and 1000 loads at once.
 
-    python benchmarks/interface_vs_bem.py [--quick]  ->  results/interface_vs_bem.{csv,md}
+    python benchmarks/interface_vs_bem.py [--quick] [--generate [--N 512]]  ->  results/interface_vs_bem.{csv,md}
 """
 
 from __future__ import annotations
@@ -22,6 +26,8 @@ import csv
 import os
 
 import numpy as np
+from _bem_generate import FILES, compare, generate
+from _bem_tamaas import have_tamaas
 from _common import median_time, outdir, parser, write_csv
 
 import persson_fp as pf
@@ -32,8 +38,11 @@ Q_L = 2.0 * np.pi
 MODELS = [("Persson", None), ("YP08", "YP08"), ("WM17", "WM17")]
 
 
+SOURCE = {"folder": DATA}  # where the BEM CSVs are read from: data/bem, or the generated ones (set by main)
+
+
 def _read(name):
-    with open(os.path.join(DATA, name), newline="") as fh:
+    with open(os.path.join(SOURCE["folder"], name), newline="") as fh:
         return list(csv.DictReader(fh))
 
 
@@ -221,9 +230,13 @@ def _fmt_table(rows, key, loads, models, spectrum="nominal"):
 
 
 def main(argv=None):
-    args = parser(__doc__.splitlines()[0]).parse_args(argv)
+    ap = parser(__doc__.splitlines()[0])
+    ap.add_argument("--generate", action="store_true", help="regenerate the BEM data (needs Tamaas, reynoldsflow)")
+    ap.add_argument("--N", type=int, default=None, help="BEM grid for --generate (default 512; 256 with --quick)")
+    args = ap.parse_args(argv)
     d = outdir(args)
     repeats = args.repeats or (3 if args.quick else 7)
+    source, agreement = _source(args, d)
     g = gap_rows(args.quick)
     lk = leak_rows(args.quick)
     ad, pull = adhesion_rows()
@@ -236,12 +249,13 @@ def main(argv=None):
     head = "| model | " + " | ".join(f"{p:g}" for p in loads) + " |"
     sep = "|---" * (len(loads) + 1) + "|"
     lines = [
-        "# What happens in the gaps: theory against BEM (H = 0.8, N = 512)",
+        f"# What happens in the gaps: theory against BEM (H = 0.8, N = {source['N']})",
         "",
-        f"Surfaces: seeds {sorted({r['seed'] for r in g})}; columns p̄/(E*ḡ); values are means over the seeds. The BEM "
-        "data are the shipped CSVs of data/bem (not regenerated here). Theory with the nominal spectrum the surfaces "
+        f"Surfaces: seeds {sorted({r['seed'] for r in g})}; columns p̄/(E*ḡ); values are means over the seeds. "
+        f"BEM data: {source['text']} Theory with the nominal spectrum the surfaces "
         "were drawn from, and (marked) with each surface's realised shell spectrum.",
         "",
+        *agreement,
         "## Gap distribution over the non-contact area: Kolmogorov-Smirnov distance",
         "",
         head,
@@ -326,7 +340,43 @@ def main(argv=None):
     with open(os.path.join(d, "interface_vs_bem.md"), "w") as fh:
         fh.write("\n".join(lines) + "\n")
     print("\n".join(lines))
-    return dict(gaps=g, leakage=lk, adhesion=ad, pull_off=pull, timings=t)
+    return dict(gaps=g, leakage=lk, adhesion=ad, pull_off=pull, timings=t, source=source)
+
+
+def _source(args, d):
+    """Generate the BEM data if asked (and possible); point _read at the generated files if complete, else data/bem."""
+    if args.generate:
+        if have_tamaas():
+            generate(d, n=args.N or (256 if args.quick else 512), quick=args.quick)
+        else:
+            print("Tamaas is not installed (pip install .[bem]): the shipped BEM CSVs of data/bem are used.")
+    folder = os.path.join(d, "bem_generated")
+    agreement = []
+    if all(os.path.exists(os.path.join(folder, f)) for f in (*FILES, "generation.csv")):
+        SOURCE["folder"] = folder
+        with open(os.path.join(folder, "generation.csv"), newline="") as fh:
+            meta = next(csv.DictReader(fh))
+        rows, worst = compare(folder)
+        rel = os.path.relpath(folder, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+        text = (
+            f"regenerated in `{rel}/` by `python benchmarks/interface_vs_bem.py --generate --N {meta['N']}"
+            f"{' --quick' if args.quick else ''}` ({meta['packages']}; Tamaas contact {meta['tamaas_contact_s']} s, "
+            f"Reynolds flow {meta['reynolds_flow_s']} s, adhesion {meta['adhesion_s']} s with "
+            f"{meta['adhesion_solves']} Tamaas solves: wall times of that one run on the shared 2-core machine; "
+            "agreement with the shipped CSVs in the next table)."
+        )
+        agreement = [
+            "## Regenerated BEM data against the shipped data/bem",
+            "",
+            "| quantity | compared | worst |",
+            "|---|---|---|",
+            *(f"| {a} | {b} | {c} |" for a, b, c in rows),
+            "",
+        ]
+        return dict(N=int(meta["N"]), text=text, folder=folder, worst=worst), agreement
+    SOURCE["folder"] = DATA
+    text = "the shipped CSVs of data/bem (not regenerated: run with --generate and the `bem` extra)."
+    return dict(N=512, text=text, folder=DATA, worst=None), agreement
 
 
 if __name__ == "__main__":
