@@ -140,17 +140,18 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
     general = getattr(sol.problem, "general", False)
     if law is None and load.size == 1:  # one station, one load: Python floats (inf on overflow, never a warning)
         pb = float(p_bar[0])
-        d = abs(float(load.reshape(-1)[0]) - pb) / pb
-        drift = np.array(d if math.isfinite(d) else math.inf).reshape(load.shape)
+        d = abs(float(load.item()) - pb) / pb
+        checks["max_load_drift"] = d = d if math.isfinite(d) else math.inf
+        drift = None  # (an array only where the element-wise test below needs it)
     else:
         expected = p_bar if law is None else np.asarray(law, dtype=float).reshape(load.shape)
         with np.errstate(invalid="ignore", over="ignore"):
             drift = np.abs(load - expected) / p_bar
         if not (finite and _all_finite(drift)):
             drift = np.nan_to_num(drift, nan=np.inf)
+        checks["max_load_drift"] = _lo_hi(drift)[1]
     tol_l = tol["load"]
     extra = sol.info.get("load_law_tolerance")  # the solver's estimate of the law's and the load's own errors
-    checks["max_load_drift"] = _lo_hi(drift)[1]
     checks["load_law"] = "first-moment law" if law is not None else ("none" if general else "load balance")
     if general and law is None:  # a solver without the moment law has nothing to check the load against
         sol.info.setdefault("warnings", []).append("general coefficients: the solver gave no first-moment law")
@@ -158,6 +159,8 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
     over = None
     # the element-wise test only where the largest drift exceeds the smallest tolerance (the common case skips it)
     if (law is not None or not general) and (extra is not None or checks["max_load_drift"] > tol_min):
+        if drift is None:
+            drift = np.full(load.shape, d)
         tol_load = np.broadcast_to(np.asarray(tol_l, dtype=float), drift.shape)
         if law is not None and extra is not None:
             tol_load = tol_load + np.asarray(extra, dtype=float).reshape(drift.shape) / p_bar
@@ -216,7 +219,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
         sol.info.setdefault("warnings", []).append(msg)
         warnings.warn(f"{sol.method}: {msg}", RuntimeWarning, stacklevel=6)
 
-    checks["breaches"] = [name for name, _ in breaches]
+    checks["breaches"] = [name for name, _ in breaches] if breaches else []
     if breaches:
         text = f"{sol.method}: invariant(s) broken: " + "; ".join(f"{n}: {m}" for n, m in breaches) + f". {_REMEDY}"
         if raise_on_breach:
@@ -246,7 +249,7 @@ def _negative_mass(sol, P):
 def _lo_hi(a):
     """(min, max) of an array as floats; one element is read directly (numpy's reductions cost ~1 us each)."""
     if a.size == 1:
-        x = float(a.reshape(-1)[0])
+        x = float(a.item())
         return x, x
     return float(a.min()), float(a.max())
 
@@ -254,7 +257,7 @@ def _lo_hi(a):
 def _all_finite(a) -> bool:
     """Whether every element of ``a`` is finite (one element read directly)."""
     if a.size == 1:
-        return math.isfinite(float(a.reshape(-1)[0]))
+        return math.isfinite(a.item())
     return bool(np.isfinite(a).all())
 
 

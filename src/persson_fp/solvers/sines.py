@@ -92,8 +92,8 @@ import numpy as np
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int, check_k_domain
 from persson_fp.solvers.sines_series import (
     _MAX_MODES,
-    _gauss_legendre,
     _modes_needed_scalar,
+    _output_rule,
     _sine_basis,
     image_area,
     modes_needed,
@@ -217,20 +217,16 @@ class SineSeriesSolver(Solver):
                 "start zeta_out later, use fewer/closer loads, or use pf.exact / method='fv'"
             )
         n_eval = o["n_eval"] or max(64, math.ceil(1.2 * N_out + 40))
-        xg, wg = _gauss_legendre(n_eval)
-        p = (0.5 * L) * (xg + 1.0)
-        w = (0.5 * L) * wg
-
-        n = np.arange(1, N_out + 1, dtype=float)
-        k = n * np.pi / L
+        p, w, k, mhk2, two_over_k_odd = _output_rule(L, N_out, n_eval)  # (cached per domain and size)
         with np.errstate(under="ignore"):
-            coef = (2.0 / L) * np.sin(np.outer(pb, k)) * np.exp(tau[..., None] * (-0.5 * k * k))  # (n_z, n_l, N_out)
+            coef = (2.0 / L) * np.sin(np.outer(pb, k)) * np.exp(tau[..., None] * mhk2)  # (n_z, n_l, N_out)
         P0 = coef @ _sine_basis(L, N_out, n_eval)  # (n_zeta, n_loads, n_eval)
         # odd modes carry the area (summed as before: a matmul is a little faster but moves the last bits, and
         # the notebooks quote round-off-level errors of the committed runs)
-        A = (coef[..., ::2] * (2.0 / k[::2])).sum(axis=-1)  # the odd modes n = 1, 3, 5, ...
+        A = (coef[..., ::2] * two_over_k_odd).sum(axis=-1)  # the odd modes n = 1, 3, 5, ...
         plastic = None
         if pr.hardness is not None:  # L = sigma_Y: the mass absorbed at the yield wall, summed in closed form
+            n = np.arange(1, N_out + 1, dtype=float)
             sgn = np.where(n % 2 == 1, 1.0, -1.0)
             plastic = pb / L - (coef * (sgn * L / (n * np.pi))).sum(axis=-1)  # strip: A_pl sine series
         info = {
