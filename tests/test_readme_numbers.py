@@ -46,6 +46,17 @@ def _whole_call_ratio(fudge):
     return float(re.search(r"whole call / solver ([\d.]+)x", note).group(1))
 
 
+def _general(scene, method, setting=None, target=None, key="call_time_s"):
+    """A row of general_engine.csv: the named ``setting``, or the fastest run of ``method`` with L1 <= ``target``."""
+    rows = [r for r in _rows("general_engine.csv") if r["scene"] == scene and r["method"] == method]
+    if setting is not None:
+        return float(next(r for r in rows if r["setting"] == setting)[key])
+    return float(min((r for r in rows if float(r["L1"]) <= target), key=lambda r: float(r["call_time_s"]))[key])
+
+
+_BESQ = "B2 = (1 + p/(2 p_bar)) dV/dzeta"
+
+
 def _growth(method):
     return _batch(method, 10_000, "time_1_thread") / _batch(method, 1000, "time_1_thread")
 
@@ -81,6 +92,24 @@ CLAIMS = {
             for f in ("none", "YP08")
         ],
         2,
+    ),
+    "general engine: chebyshev against the peers (README)": (
+        "README.md",
+        r"L1 ≤ 1e-6 in ([\d.]+) ms, ≤ 1e-8 in ([\d.]+) ms, ≤ 1e-10 in ([\d.]+) ms \(asked tol .*? a hand-written "
+        r"Crank–Nicolson ([\d.]+) ms for 1e-4 and ([\d.]+) s for 1e-6, FiPy .*? ([\d.]+) s for 1e-4 and does not reach "
+        r"1e-6 \(([\d.e-]+) in ([\d.]+) s, 3200 cells\), py-pde .*? ([\d.]+) s for 1e-4",
+        lambda: [
+            _general(_BESQ, "chebyshev", "tol=1e-06") * 1e3,
+            _general(_BESQ, "chebyshev", "tol=1e-08") * 1e3,
+            _general(_BESQ, "chebyshev", "tol=1e-10") * 1e3,
+            _general(_BESQ, "hand Crank-Nicolson", target=1e-4) * 1e3,
+            _general(_BESQ, "hand Crank-Nicolson", target=1e-6),
+            _general(_BESQ, "FiPy (Crank-Nicolson, LU)", target=1e-4),
+            _general(_BESQ, "FiPy (Crank-Nicolson, LU)", "cells=3200, steps=400", key="L1"),
+            _general(_BESQ, "FiPy (Crank-Nicolson, LU)", "cells=3200, steps=400"),
+            _general(_BESQ, "py-pde (numba, adaptive RK)", target=1e-4),
+        ],
+        [2, 2, 2, 2, 3, 2, 2, 3, 3],
     ),
     "batch: exact at 1e4 loads (README, closed form)": (
         "README.md",
