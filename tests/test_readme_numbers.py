@@ -57,6 +57,18 @@ def _general(scene, method, setting=None, target=None, key="call_time_s"):
 _BESQ = "B2 = (1 + p/(2 p_bar)) dV/dzeta"
 
 
+def _auto_tol(tol):
+    return float(next(r for r in _rows("plasticity_auto_tol.csv") if float(r["tol"]) == tol)["time_s"])
+
+
+def _auto_tol_all_met():
+    """Every tol 1e-3 ... 1e-8 of plasticity_auto_tol.csv met, each estimate above its true error."""
+    rows = _rows("plasticity_auto_tol.csv")
+    return [float(r["tol"]) for r in rows] == [10.0**-k for k in range(3, 9)] and all(
+        r["status"] == "ok" and r["meets_tol"] == "True" and r["estimate_covers"] == "True" for r in rows
+    )
+
+
 def _growth(method):
     return _batch(method, 10_000, "time_1_thread") / _batch(method, 1000, "time_1_thread")
 
@@ -110,6 +122,18 @@ CLAIMS = {
             _general(_BESQ, "py-pde (numba, adaptive RK)", target=1e-4),
         ],
         [2, 2, 2, 2, 3, 2, 2, 3, 3],
+    ),
+    "plasticity: auto on the moving wall at every tol (README)": (
+        "README.md",
+        r"`method=\"auto\"` meets every tol from 1e-3 to 1e-8, .*? ([\d.]+) ms for 1e-5, ([\d.]+) ms for 1e-6, "
+        r"([\d.]+) s for 1e-7, ([\d.]+) s for 1e-8",
+        lambda: [
+            _auto_tol(1e-5) * 1e3,
+            _auto_tol(1e-6) * 1e3,
+            _auto_tol(1e-7),
+            _auto_tol(1e-8),
+        ],
+        3,
     ),
     "batch: exact at 1e4 loads (README, closed form)": (
         "README.md",
@@ -223,3 +247,10 @@ def test_readme_states_the_accuracy_of_an_earlier_station():
     L1 = pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).compare().L1.ravel()
     assert [_sig(float(g), 2) for g in m.groups()] == [_sig(x, 2) for x in L1]
     assert pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).error_estimate["L1"].shape == (2, 1)  # (station, load)
+
+
+def test_readme_auto_meets_every_tol_on_the_moving_wall():
+    """The README says auto meets every tol 1e-3 ... 1e-8 on the moving wall with each estimate above its true error:
+    so does the results file."""
+    assert "meets every tol from 1e-3 to 1e-8" in _text("README.md")
+    assert _auto_tol_all_met()
