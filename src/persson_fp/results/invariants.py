@@ -81,7 +81,6 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
     load = sol.load_all  # the supported load; a model with a yield wall adds its plastic share here
     checks = {}
     breaches = []  # (invariant, message)
-    where = _where(sol)  # (a formatter, called only on a breach)
 
     finite = _all_finite(A) and _all_finite(load)
     if not finite:
@@ -94,7 +93,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
     if a_min < -tol["area"] or a_max > 1.0 + tol["area"]:
         bad = (A < -tol["area"]) | (A > 1.0 + tol["area"])
         i, j = np.argwhere(bad)[0]
-        breaches.append(("area_range", f"A* = {A[i, j]:.6g} outside [0, 1] at {where(i, j)}"))
+        breaches.append(("area_range", f"A* = {A[i, j]:.6g} outside [0, 1] at {_where(sol, i, j)}"))
     if A.shape[0] > 1:
         with np.errstate(invalid="ignore", divide="ignore"):
             rel_inc = np.diff(A, axis=0) / np.maximum(np.abs(A[:-1]), np.finfo(float).tiny)
@@ -109,7 +108,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
         breaches.append(
             (
                 "area_monotone",
-                f"A* grows by {rel_inc[i, j]:.3e} (relative, > {tol['area']:.1e}) up to {where(i + 1, j)} "
+                f"A* grows by {rel_inc[i, j]:.3e} (relative, > {tol['area']:.1e}) up to {_where(sol, i + 1, j)} "
                 "(contact can only be lost, eq:Area)",
             )
         )
@@ -129,7 +128,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
             breaches.append(
                 (
                     "mass_balance",
-                    f"A* = {A[i, j]:.6g} but 1 - (absorbed at the walls) = {flux[i, j]:.6g} at {where(i, j)} "
+                    f"A* = {A[i, j]:.6g} but 1 - (absorbed at the walls) = {flux[i, j]:.6g} at {_where(sol, i, j)} "
                     f"(off by {gap[i, j]:.3e} > the far-wall loss {far:.3e} + {MASS_BALANCE_TOL:.0e})",
                 )
             )
@@ -176,7 +175,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
             (
                 "load_balance",
                 f"int p P0 dp deviates from {what} by {drift[i, j]:.3e} (relative to p_bar, > {tol_load[i, j]:.1e}) "
-                f"at {where(i, j)}",
+                f"at {_where(sol, i, j)}",
             )
         )
 
@@ -211,7 +210,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
             (
                 "positivity",
                 f"P0 dips to {low[i, j]:.3e} = -{rel_neg[i, j]:.2e} x its peak (> {tol['negative']:.1e}) at "
-                f"{where(i, j)} (oscillations: refine, or use an L-stable scheme)",
+                f"{_where(sol, i, j)} (oscillations: refine, or use an L-stable scheme)",
             )
         )
     elif checks["negative_P0"]:
@@ -261,13 +260,9 @@ def _all_finite(a) -> bool:
     return bool(np.isfinite(a).all())
 
 
-def _where(sol):
-    """A formatter of (station, load) indices for messages."""
-
-    def fmt(i, j):
-        s = f"zeta = {sol.zeta[i]:.6g}"
-        if sol.problem.n_loads > 1 or not sol.problem.scalar_load:
-            s += f", p_bar = {sol.problem.p_bar[j]:.6g}"
-        return s
-
-    return fmt
+def _where(sol, i, j) -> str:
+    """Station ``i`` (and load ``j`` where there are several) of ``sol``, for a message."""
+    s = f"zeta = {sol.zeta[i]:.6g}"
+    if sol.problem.n_loads > 1 or not sol.problem.scalar_load:
+        s += f", p_bar = {sol.problem.p_bar[j]:.6g}"
+    return s

@@ -173,7 +173,7 @@ class Solver:
                     "general": "'fv' or 'mol'",
                 }
                 raise ValueError(f"method {self.name!r} does not solve {what}; use method={which[need]}")
-        self.check = check_bool(check, "check")
+        self.check = check if check is True or check is False else check_bool(check, "check")
         self.max_memory = MEMORY_BUDGET if max_memory is None else check_float(max_memory, "max_memory", 0.0)
         self.max_time = TIME_BUDGET if max_time is None else check_float(max_time, "max_time", 0.0)
         known = self.OPTIONS.keys()
