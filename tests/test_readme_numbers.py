@@ -57,13 +57,20 @@ def _general(scene, method, setting=None, target=None, key="call_time_s"):
 _BESQ = "B2 = (1 + p/(2 p_bar)) dV/dzeta"
 
 
-def _auto_tol(tol):
-    return float(next(r for r in _rows("plasticity_auto_tol.csv") if float(r["tol"]) == tol)["time_s"])
+_PR2 = "the README's example"
+
+
+def _auto_tol_rows(scene="scene B"):
+    return [r for r in _rows("plasticity_auto_tol.csv") if r["scene"] == scene]
+
+
+def _auto_tol(tol, scene="scene B", key="time_s"):
+    return float(next(r for r in _auto_tol_rows(scene) if float(r["tol"]) == tol)[key])
 
 
 def _auto_tol_all_met():
-    """Every tol 1e-3 ... 1e-8 of plasticity_auto_tol.csv met, each estimate above its true error."""
-    rows = _rows("plasticity_auto_tol.csv")
+    """Every tol 1e-3 ... 1e-8 of scene B in plasticity_auto_tol.csv met, each estimate above its true error."""
+    rows = _auto_tol_rows()
     return [float(r["tol"]) for r in rows] == [10.0**-k for k in range(3, 9)] and all(
         r["status"] == "ok" and r["meets_tol"] == "True" and r["estimate_covers"] == "True" for r in rows
     )
@@ -134,6 +141,13 @@ CLAIMS = {
             _auto_tol(1e-8),
         ],
         3,
+    ),
+    "plasticity: auto on the README's moving-wall example (README)": (
+        "README.md",
+        r"it meets 1e-3 to 1e-6 \(([\d.]+) s for 1e-6\) and refuses 1e-7 and 1e-8 .*? its best run there reached "
+        r"([\d.e-]+)\)",
+        lambda: [_auto_tol(1e-6, _PR2), _best_refused_L1()],
+        [3, 2],
     ),
     "batch: exact at 1e4 loads (README, closed form)": (
         "README.md",
@@ -247,6 +261,19 @@ def test_readme_states_the_accuracy_of_an_earlier_station():
     L1 = pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).compare().L1.ravel()
     assert [_sig(float(g), 2) for g in m.groups()] == [_sig(x, 2) for x in L1]
     assert pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).error_estimate["L1"].shape == (2, 1)  # (station, load)
+
+
+def _best_refused_L1():
+    """The smallest L1 estimate that the refusals of the README's example name ("best so far: L1 ...")."""
+    rows = [r for r in _auto_tol_rows(_PR2) if r["status"] != "ok"]
+    return min(float(re.search(r"best so far: L1 ([\d.e-]+)", r["status"]).group(1)) for r in rows)
+
+
+def test_readme_auto_on_the_readmes_moving_wall_example():
+    """As the README says: 1e-3 ... 1e-6 met, 1e-7 and 1e-8 refused by a SolverError (not a wrong answer)."""
+    rows = {float(r["tol"]): r for r in _auto_tol_rows(_PR2)}
+    assert [rows[10.0**-k]["meets_tol"] for k in range(3, 7)] == ["True"] * 4
+    assert all(rows[t]["status"].startswith("SolverError: fv: tol") for t in (1e-7, 1e-8))
 
 
 def test_readme_auto_meets_every_tol_on_the_moving_wall():
