@@ -41,6 +41,16 @@ def _overhead(row, fudge, key):
     return value if key == "note" else float(value)
 
 
+_WHOLE = "pf.solve(problem, 'sines'): whole call"
+
+
+def _pypde(fudge, n_p, key):
+    """A row of overhead_pypde.csv: py-pde's explicit Euler on ``n_p`` cells against the whole sines call."""
+    return float(
+        next(r for r in _rows("overhead_pypde.csv") if r["fudge"] == fudge and int(r["pypde_n_p"]) == n_p)[key]
+    )
+
+
 def _whole_call_ratio(fudge):
     note = _overhead("pf.solve(problem, 'sines'): whole call", fudge, "note")
     return float(re.search(r"whole call / solver ([\d.]+)x", note).group(1))
@@ -101,16 +111,34 @@ CLAIMS = {
     ),
     "overhead: the whole sines call (README)": (
         "README.md",
-        r"call costs ([\d.]+)x the solver's own time \(([\d.]+)x with YP08",
+        r"call costs ([\d.]+) us, ([\d.]+)x the solver's own time \(`sol.wall_time`, ([\d.]+) us: .*?; ([\d.]+)x with "
+        r"YP08; .*?: the ([\d.]+) us above it",
         lambda: [
-            float(
-                re.search(
-                    r"whole call / solver ([\d.]+)x", _overhead("pf.solve(problem, 'sines'): whole call", f, "note")
-                ).group(1)
-            )
-            for f in ("none", "YP08")
+            _overhead(_WHOLE, "none", "seconds_per_call") * 1e6,
+            _whole_call_ratio("none"),
+            _overhead(_WHOLE, "none", "core_seconds") * 1e6,
+            _whole_call_ratio("YP08"),
+            _overhead(_WHOLE, "none", "overhead_seconds") * 1e6,
         ],
-        2,
+        3,
+    ),
+    "overhead: the whole sines call against py-pde's compiled stepper (README)": (
+        "README.md",
+        r"for L1 ≤ 1e-3 ([\d.]+) ms on 25 cells against ([\d.]+) ms \(sines ([\d.]+)x the stepper; YP08 ([\d.]+) ms on "
+        r"50 cells against ([\d.]+) ms, ([\d.]+)x\), for L1 ≤ 1e-5 ([\d.]+) ms on 100 cells against ([\d.]+) ms "
+        r"\(([\d.]+)x;",
+        lambda: [
+            _pypde("none", 25, "pypde_stepper_s") * 1e3,
+            _pypde("none", 25, "sines_whole_call_s") * 1e3,
+            _pypde("none", 25, "sines_over_stepper"),
+            _pypde("YP08", 50, "pypde_stepper_s") * 1e3,
+            _pypde("YP08", 50, "sines_whole_call_s") * 1e3,
+            _pypde("YP08", 50, "sines_over_stepper"),
+            _pypde("none", 100, "pypde_stepper_s") * 1e3,
+            _pypde("none", 100, "sines_whole_call_s") * 1e3,
+            _pypde("none", 100, "sines_over_stepper"),
+        ],
+        [2, 2, 3, 2, 2, 3, 3, 2, 2],
     ),
     "general engine: chebyshev against the peers (README)": (
         "README.md",
