@@ -1,14 +1,12 @@
 """The result of :func:`persson_fp.solve` and its comparison with the exact solution.
 
-A :class:`Solution` holds P0 at the output stations on the method's grid, the
-derived integrals (contact area ``eq:Area``, load ``eq:Load_equilibrium``,
-variance) and what the solver did (``info``: grid, steps, rhs calls, wall
-time, options).  The invariants -- P0 >= 0, A* non-increasing, load = p_bar --
-are checked once, here (:func:`check_invariants`), against tolerances tied to the
-method's accuracy, and recorded in ``info["checks"]``; a breach raises
-:class:`SolverError` (a warning with ``check=False``) and a non-finite field
-raises :class:`InstabilityError` instead of being returned.  :meth:`Solution.compare` measures the error
-actually made against :func:`persson_fp.exact`.
+A :class:`Solution` holds P0 at the output stations on the method's grid, the derived integrals (contact area
+``eq:Area``, load ``eq:Load_equilibrium``, variance) and what the solver did (``info``: grid, steps, rhs calls, wall
+time, options).  The invariants -- P0 >= 0, A* non-increasing, load = p_bar -- are checked once, here
+(:func:`check_invariants`), against tolerances tied to the method's accuracy, and recorded in ``info["checks"]``; a
+breach raises :class:`SolverError` (a warning with ``check=False``) and a non-finite field raises
+:class:`InstabilityError` instead of being returned.  :meth:`Solution.compare` measures the error actually made
+against :func:`persson_fp.exact`.
 """
 
 from __future__ import annotations
@@ -184,12 +182,10 @@ class Solution:
             With ``check=True``, a breached invariant, named with its remedy.
         """
         zeta = np.asarray(zeta, dtype=float)
-        if zeta.ndim == 0:
-            zeta = zeta.reshape(1)
+        zeta = zeta.reshape(1) if zeta.ndim == 0 else zeta
         n_z, n_l = zeta.size, problem.n_loads
         P0 = np.asarray(P0, dtype=float).reshape(n_z, n_l, -1)
-        # min and max propagate NaN and reach +-inf: both finite <=> every element finite (and the positivity
-        # check reuses them)
+        # min and max propagate NaN and reach +-inf: both finite <=> all finite (the positivity check reuses them)
         extrema = (float(P0.min()), float(P0.max())) if P0.size else (0.0, 0.0)
         if not (math.isfinite(extrema[0]) and math.isfinite(extrema[1])):
             raise InstabilityError(
@@ -234,8 +230,7 @@ class Solution:
 
     def _check(self, tolerances=None, raise_on_breach=True, extrema=None):
         """Check the invariants (:func:`check_invariants`); record them in ``info["checks"]``."""
-        checks = check_invariants(self, tolerances, raise_on_breach=raise_on_breach, extrema=extrema)
-        self.info["checks"] = checks
+        self.info["checks"] = check_invariants(self, tolerances, raise_on_breach=raise_on_breach, extrema=extrema)
 
     # -- public views (load axis dropped for a scalar load) -------------------------------
     def _squeeze(self, a):
