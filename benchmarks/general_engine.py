@@ -1,5 +1,5 @@
 r"""General coefficients (issue 21): time to reach an L1 accuracy, persson-fp's engines against a hand-written
-Crank--Nicolson and py-pde, whole calls.
+Crank--Nicolson, py-pde and FiPy, whole calls.
 
 Two scenes on the reference problem (``pf.ContactProblem.reference()``, p_bar = 0.5 sqrt(V(zeta_max))), both as
 ``pf.FokkerPlanckProblem``:
@@ -14,8 +14,14 @@ Two scenes on the reference problem (``pf.ContactProblem.reference()``, p_bar = 
 Methods: ``"chebyshev"`` (``tol`` = 1e-4 ... 1e-10; starts from the delta), the old general path ``"fv"``
 (``n_p = n_steps``), a Crank--Nicolson written here (uniform cells, a sparse LU factorised once per call) and
 py-pde (``pde.PDE`` expression, numba backend, adaptive explicit Runge--Kutta; the compiled stepper is built once
-and reused, its compile time is not counted).  The hand CN and py-pde are given *more* start information than
-persson-fp: the exact solution at V_s.
+and reused, its compile time is not counted) and FiPy (``Grid1D`` of uniform cells on the same [0, L],
+``constrain(0)`` on both faces, ``TransientTerm() == DiffusionTerm(B2/2 at the faces) +
+CentralDifferenceConvectionTerm(b'/2)`` -- the conservative form of dP/dV = 1/2 d^2(b P)/dp^2 -- with the
+``LinearLUSolver``; Crank--Nicolson from FiPy's implicit terms alone: a backward-Euler half step
+(I - h/2 A) Y = P^n, then P^{n+1} = 2 Y - P^n, which is exactly (I - h/2 A)^{-1} (I + h/2 A) P^n; FiPy's
+explicit terms are not used, they ignore the constrained faces).  The hand CN, py-pde and FiPy are given *more* start
+information than persson-fp: the exact solution at V_s, and the same far wall at L.  Each FiPy call builds its mesh,
+variable and equation (as a user's script would) and is timed whole.
 
 Every time is the median of ``--repeats`` whole calls (a call that takes over a second: at most 3; the first call
 is not timed).  L1 = int |P0 - reference| dp at zeta_max (the polynomial or the cell values against the reference
@@ -205,6 +211,32 @@ def pypde_stepper(pb, V, slope, L, n, rtol):
     return p, run, L / n
 
 
+def fipy_cn(pb, V, slope, L, n, m):
+    """FiPy on n uniform cells of [0, L] (P = 0 on both faces), m Crank--Nicolson steps from V_s to V, each one
+    backward-Euler half step and an extrapolation (module docstring)."""
+    import fipy
+
+    V_s = V_START * V
+    dp = L / n
+    mesh = fipy.Grid1D(nx=n, dx=dp)
+    p = np.asarray(mesh.cellCenters.value[0])
+    phi = fipy.CellVariable(mesh=mesh, value=start_density(p, pb, V_s, slope))
+    phi.constrain(0.0, mesh.facesLeft)
+    phi.constrain(0.0, mesh.facesRight)
+    # 1/2 d^2(b P)/dp^2 = d/dp (b/2 dP/dp) + d/dp (b'/2 P), b = 1 + slope p
+    rhs = fipy.DiffusionTerm(coeff=0.5 * (1.0 + slope * mesh.faceCenters[0]))
+    if slope:
+        rhs = rhs + fipy.CentralDifferenceConvectionTerm(coeff=(0.5 * slope,))
+    eq = fipy.TransientTerm() == rhs
+    lin = fipy.LinearLUSolver()
+    h = (V - V_s) / m
+    for _ in range(m):
+        P_n = np.array(phi.value)
+        eq.solve(var=phi, dt=0.5 * h, solver=lin)
+        phi.setValue(2.0 * np.asarray(phi.value) - P_n)
+    return p, np.array(phi.value), dp
+
+
 def log(msg):
     sys.stderr.write(msg + "\n")
     sys.stderr.flush()
@@ -279,6 +311,20 @@ def main(argv=None):
                 t, P = timed(run, repeats)
                 add("py-pde (numba, adaptive RK)", f"cells={n}", t, cell_l1(p, P, dp, pdf))
                 if t > 10.0:  # (explicit steps grow as n^2: the next size would take minutes)
+                    break
+            try:
+                import fipy  # noqa: F401
+
+                have_fipy = True
+            except ImportError:
+                have_fipy = False
+            # FiPy costs ~10 ms of Python per step whatever the grid: the steps set its time, so it is also given
+            # fewer steps per cell than the hand CN (its best trade of space against time error is among these)
+            fipy_runs = [(200, 50)] if args.quick else [(400, 50), (800, 100), (1600, 100), (1600, 200), (3200, 400)]
+            for n, m in fipy_runs if have_fipy else ():
+                t, (p, P, dp) = timed(lambda n=n, m=m: fipy_cn(pb, V, slope, L, n, m), repeats)
+                add("FiPy (Crank-Nicolson, LU)", f"cells={n}, steps={m}", t, cell_l1(p, P, dp, pdf))
+                if t > 10.0:
                     break
         rows[-1]["A_ref"] = A_ref
     write_csv(os.path.join(out, "general_engine.csv"), rows)

@@ -7,19 +7,27 @@ A. constant hardness sigma_Y = 1.5 sqrt(V(zeta_max)) on the reference problem (n
 B. a moving yield wall sigma_Y = sigma_1 zeta^0.2, p_bar = 0.3 sigma_1, zeta to 10, a surface rough enough
    that A_pl ~ 0.17: fv and mol against fv's own Richardson-extrapolated fine-grid value, with each run's
    error estimate and the observed order;
-C. zeta_max = 1e16 with sigma_Y = sigma_1 zeta^0.2 (self-similar: sqrt(V) grows like sigma_Y): fv.
+C. zeta_max = 1e16 with sigma_Y = sigma_1 zeta^0.2 (self-similar: sqrt(V) grows like sigma_Y): fv;
+D. ``method="auto"`` on scene B (no fudge) and on the README's moving-wall example (sigma_Y = 0.035 zeta^0.2 to
+   zeta = 128; not in --quick) at tol = 1e-3 ... 1e-8: the whole call (median), what auto chose (or what it raised,
+   and after how long), its own estimate and the true error -- the areas A_el, A_pl, A_non against the
+   extrapolation of fv on 1600, 3200 and 6400 cells (Aitken's delta-squared, i.e. with the observed order; the
+   spread to the order-2 Richardson value is the reference's uncertainty, reported), and the L1 of P0 against the
+   6400-cell cell averages (the fine CDF interpolated by a cubic spline at the coarse cell edges; fv's own estimate
+   of that fine run is the reference's uncertainty).  Written to plasticity_auto_tol.{csv,md}.
 
 The peer ("cn-uniform") is a plain Crank-Nicolson on a uniform pressure grid with steps
 dzeta = alpha dp^2 / f (f = B2/2, alpha = 1/512), a discrete delta start at zeta = 1, the wall fluxes by
 one-sided differences and, for the moving wall, the wall on the nearest grid node (first order) -- the
 scheme class of the published Fortran code, re-implemented here in numpy (one LU, back substitution per step).
 
-    python benchmarks/plasticity.py [--quick]  ->  results/plasticity.{csv,md,png}
+    python benchmarks/plasticity.py [--quick]  ->  results/plasticity.{csv,md,png}, results/plasticity_auto_tol.{csv,md}
 """
 
 from __future__ import annotations
 
 import os
+import statistics
 import time
 import warnings
 
@@ -139,6 +147,134 @@ def run_peer(problem, n_cells, reference):
     }
 
 
+def _edges(sol):
+    """Cell edges of the last station of a cell-average Solution (uniform cells, the moving grid's last row)."""
+    p, w = np.atleast_2d(sol.p)[-1], np.atleast_2d(sol.weights)[-1]
+    return np.concatenate((p - 0.5 * w, [p[-1] + 0.5 * w[-1]]))
+
+
+def moving_reference(pr, ns):
+    """The fine references of scene D: areas extrapolated from fv on the grids ``ns`` (n_p = n_steps, each twice
+    the last), the finest run's CDF (a cubic spline through its edges) and the uncertainties."""
+    from scipy.interpolate import CubicSpline
+
+    sols = [pf.solve(pr, "fv", n_p=n, n_steps=n) for n in ns]
+    ref, spread = {}, 0.0
+    for q in ("elastic_area", "plastic_area", "noncontact_area"):
+        a1, a2, a3 = (float(np.ravel(getattr(s, q))[-1]) for s in sols[-3:])
+        d1, d2 = a2 - a1, a3 - a2
+        aitken = a3 - d2 * d2 / (d2 - d1) if d2 != d1 else a3
+        richardson = a3 + d2 / 3.0
+        ref[q] = aitken
+        spread = max(spread, abs(aitken - richardson))
+    fine = sols[-1]
+    e = _edges(fine)
+    F = np.concatenate(([0.0], np.cumsum(fine.P0_all[-1, 0] * np.diff(e))))
+    cdf = CubicSpline(e, F)
+    l1_unc = float(np.max(fine.error_estimate["L1"]))
+    return ref, spread, cdf, l1_unc
+
+
+def auto_tol_rows(pr, tols, reps, quick):
+    """Scene D (module docstring): one row per tol."""
+    ns = (400, 800, 1600) if quick else (1600, 3200, 6400)
+    t0 = time.perf_counter()
+    ref, spread, cdf, l1_unc = moving_reference(pr, ns)
+    t_ref = time.perf_counter() - t0
+    rows = []
+    for tol in tols:
+        row = {"tol": tol, "reference": f"fv n_p = n_steps = {ns}", "reference_time_s": t_ref,
+               "reference_area_uncertainty": spread, "reference_L1_uncertainty": l1_unc}  # fmt: skip
+        try:
+            t0 = time.perf_counter()
+            sol = pf.solve(pr, "auto", tol=tol)
+            first = time.perf_counter() - t0
+            n = reps if first < 1.0 else (3 if first < 5.0 else 1)
+            t = statistics.median(
+                [first] + [_timed(lambda tol=tol: pf.solve(pr, "auto", tol=tol)) for _ in range(n - 1)]
+            )
+        except Exception as err:  # (reported, not hidden: what raised and after how long)
+            row.update(status=f"{type(err).__name__}: {err}", time_s=time.perf_counter() - t0)
+            rows.append(row)
+            continue
+        est = sol.error_estimate
+        e = _edges(sol)
+        ref_avg = np.diff(cdf(e)) / np.diff(e)
+        true_l1 = float(np.sum(np.abs(sol.P0_all[-1, 0] - ref_avg) * np.diff(e)))
+        true_area = max(abs(float(np.ravel(getattr(sol, q))[-1]) - ref[q]) for q in ref)
+        est_area = max(
+            float(np.max(est[q])) for q in ("contact_area", "elastic_area", "plastic_area", "noncontact_area")
+        )
+        auto = sol.info.get("auto", {})
+        row.update(
+            status="ok",
+            time_s=t,
+            first_call_s=first,
+            method=sol.method,
+            attempts=len(auto.get("attempts", [])),
+            options=repr(auto.get("attempts", [{}])[-1].get("options")),
+            A_pl=float(np.ravel(sol.plastic_area)[-1]),
+            estimate_L1=float(np.max(est["L1"])),
+            true_L1=true_l1,
+            estimate_area=est_area,
+            true_area=true_area,
+            meets_tol=bool(true_l1 <= tol and true_area <= tol),
+            estimate_covers=bool(float(np.max(est["L1"])) >= true_l1 and est_area >= true_area),
+        )
+        rows.append(row)
+    return rows
+
+
+def _timed(fn):
+    t0 = time.perf_counter()
+    fn()
+    return time.perf_counter() - t0
+
+
+def auto_tol_markdown(sections) -> str:
+    """``sections``: (title, problem, rows) per problem."""
+    lines = ["# method='auto' on the moving wall at tol = 1e-3 ... 1e-8 (`benchmarks/plasticity.py`, scene D)", ""]
+    lines.append(
+        f"Machine: {machine()}. Time: median of the whole `pf.solve(problem, method='auto', tol=tol)` call (first "
+        "call included in the median; 3 repeats above 1 s, 1 above 5 s). One station, zeta_max."
+    )
+    for title, pr, rows in sections:
+        ok = [r for r in rows if r["status"] == "ok"]
+        lines += [
+            "",
+            f"## {title}",
+            "",
+            f"`{pr!r}`. True errors against {rows[0]['reference']} (areas: Aitken extrapolation, "
+            f"uncertainty {rows[0]['reference_area_uncertainty']:.1e}; L1: the finest run's cell averages, uncertainty "
+            f"{rows[0]['reference_L1_uncertainty']:.1e} by its own estimate; the reference took "
+            f"{rows[0]['reference_time_s']:.3g} s).",
+            "",
+            "- every tol met (true L1 and every true area error <= tol): "
+            f"{all(r['meets_tol'] for r in ok) and len(ok) == len(rows)}",
+            f"- every estimate >= the true error: {all(r['estimate_covers'] for r in ok)}",
+            "",
+            "| tol | status | time | method (attempts) | final options | L1: estimate / true | areas: estimate / true "
+            "| met |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- |",
+        ]
+        for r in rows:
+            if r["status"] != "ok":
+                lines.append(f"| {r['tol']:g} | {r['status']} | {r['time_s']:.3g} s (until it raised) | | | | | no |")
+                continue
+            lines.append(
+                f"| {r['tol']:g} | ok | {r['time_s'] * 1e3:.3g} ms | {r['method']} ({r['attempts']}) | "
+                f"`{r['options']}` | {r['estimate_L1']:.2e} / {r['true_L1']:.2e} | "
+                f"{r['estimate_area']:.2e} / {r['true_area']:.2e} | {'yes' if r['meets_tol'] else 'NO'} |"
+            )
+    return "\n".join(lines) + "\n"
+
+
+def readme_moving_problem():
+    """The README's moving-wall example: sqrt(V) = 0.05 E*, p_bar = 0.03, sigma_Y = 0.035 zeta^0.2, zeta to 128."""
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=128.0)
+    return pf.ContactProblem(psd, p_bar=0.03, hardness=pf.hardness.PowerLaw(sigma_1=0.035, n=0.2))
+
+
 def time_to(rows, threshold):
     out = {}
     for r in rows:
@@ -148,11 +284,31 @@ def time_to(rows, threshold):
 
 
 def main(argv=None):
-    args = parser(__doc__.splitlines()[0]).parse_args(argv)
+    p = parser(__doc__.splitlines()[0])
+    p.add_argument("--auto-only", action="store_true", help="scene D alone (plasticity_auto_tol.{csv,md})")
+    args = p.parse_args(argv)
     quick = args.quick
     reps = args.repeats or (2 if quick else 5)
     out = outdir(args)
     rows = []
+
+    # D: auto at tol 1e-3 ... 1e-8 on scene B ---------------------------------------------------------------------
+    tols = (1e-3, 1e-5) if quick else (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
+    sections = [("scene B: sigma_1 zeta^0.2 to zeta = 10, A_pl = 0.167", moving_problem(None))]
+    if not quick:  # (its fine reference and the tightest tols take minutes)
+        sections.append(("the README's example: 0.035 zeta^0.2 to zeta = 128, A_pl = 0.117", readme_moving_problem()))
+    auto_rows, done = [], []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for title, pr in sections:
+            rows_d = [{"scene": title.split(":")[0], **r} for r in auto_tol_rows(pr, tols, reps, quick)]
+            auto_rows += rows_d
+            done.append((title, pr, rows_d))
+    write_csv(os.path.join(out, "plasticity_auto_tol.csv"), auto_rows)
+    with open(os.path.join(out, "plasticity_auto_tol.md"), "w") as fh:
+        fh.write(auto_tol_markdown(done))
+    if args.auto_only:
+        return auto_rows
 
     # A: constant hardness, exact reference ------------------------------------------------------------
     for fudge in (None, "YP08"):

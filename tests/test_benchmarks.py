@@ -130,6 +130,14 @@ def test_plasticity_quick(tmp_path):
     fv = [r for r in rows if r["scene"] == "moving" and r["method"] == "fv"]
     assert min(r["error_A_pl"] for r in fv) < 1e-6
     assert "cn-uniform (peer)" in {r["method"] for r in rows}
+    # scene D: auto on the moving wall, its true errors against the extrapolated fine fv within tol and its estimate
+    auto = _rows(tmp_path / "plasticity_auto_tol.csv")
+    assert {r["scene"] for r in auto} == {"scene B"}  # (the README's example only in the full run)
+    assert [float(r["tol"]) for r in auto] == [1e-3, 1e-5] and all(r["status"] == "ok" for r in auto)
+    for r in auto:
+        assert float(r["true_L1"]) <= float(r["estimate_L1"]) <= float(r["tol"])
+        assert float(r["true_area"]) <= float(r["estimate_area"]) <= float(r["tol"])
+        assert float(r["reference_area_uncertainty"]) < 1e-3 * float(r["tol"])
 
 
 def test_sweep_quick(tmp_path):
@@ -212,3 +220,13 @@ def test_general_engine_quick(tmp_path):
     cheb = [r for r in rows if r["method"] == "chebyshev"]
     assert cheb and all(r["L1"] <= float(r["setting"].split("=")[1]) for r in cheb)
     assert "L1 <= 1e-06" in (tmp_path / "general_engine.md").read_text()
+    fipy = [r for r in rows if r["method"].startswith("FiPy")]
+    if fipy:  # (FiPy installed) its Crank--Nicolson from implicit half steps is the hand CN's, for B2 = dV/dzeta
+        hand = {r["scene"]: r for r in rows if r["method"] == "hand Crank-Nicolson"}
+        assert {r["scene"] for r in fipy} == set(hand)
+        for r in fipy:
+            assert r["setting"] == hand[r["scene"]]["setting"]  # the same cells and steps in --quick
+            if r["scene"] == "B2 = dV/dzeta":  # the same discrete operator: the same numbers to round-off
+                assert r["L1"] == pytest.approx(hand[r["scene"]]["L1"], rel=1e-8)
+            else:  # flux form with central convection against the hand CN's d^2(bP): the same order of error
+                assert 0.3 < r["L1"] / hand[r["scene"]]["L1"] < 3.0

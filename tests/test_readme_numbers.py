@@ -41,9 +41,49 @@ def _overhead(row, fudge, key):
     return value if key == "note" else float(value)
 
 
+_WHOLE = "pf.solve(problem, 'sines'): whole call"
+
+
+def _pypde(fudge, n_p, key):
+    """A row of overhead_pypde.csv: py-pde's explicit Euler on ``n_p`` cells against the whole sines call."""
+    return float(
+        next(r for r in _rows("overhead_pypde.csv") if r["fudge"] == fudge and int(r["pypde_n_p"]) == n_p)[key]
+    )
+
+
 def _whole_call_ratio(fudge):
     note = _overhead("pf.solve(problem, 'sines'): whole call", fudge, "note")
     return float(re.search(r"whole call / solver ([\d.]+)x", note).group(1))
+
+
+def _general(scene, method, setting=None, target=None, key="call_time_s"):
+    """A row of general_engine.csv: the named ``setting``, or the fastest run of ``method`` with L1 <= ``target``."""
+    rows = [r for r in _rows("general_engine.csv") if r["scene"] == scene and r["method"] == method]
+    if setting is not None:
+        return float(next(r for r in rows if r["setting"] == setting)[key])
+    return float(min((r for r in rows if float(r["L1"]) <= target), key=lambda r: float(r["call_time_s"]))[key])
+
+
+_BESQ = "B2 = (1 + p/(2 p_bar)) dV/dzeta"
+
+
+_PR2 = "the README's example"
+
+
+def _auto_tol_rows(scene="scene B"):
+    return [r for r in _rows("plasticity_auto_tol.csv") if r["scene"] == scene]
+
+
+def _auto_tol(tol, scene="scene B", key="time_s"):
+    return float(next(r for r in _auto_tol_rows(scene) if float(r["tol"]) == tol)[key])
+
+
+def _auto_tol_all_met():
+    """Every tol 1e-3 ... 1e-8 of scene B in plasticity_auto_tol.csv met, each estimate above its true error."""
+    rows = _auto_tol_rows()
+    return [float(r["tol"]) for r in rows] == [10.0**-k for k in range(3, 9)] and all(
+        r["status"] == "ok" and r["meets_tol"] == "True" and r["estimate_covers"] == "True" for r in rows
+    )
 
 
 def _growth(method):
@@ -71,16 +111,71 @@ CLAIMS = {
     ),
     "overhead: the whole sines call (README)": (
         "README.md",
-        r"call costs ([\d.]+)x the solver's own time \(([\d.]+)x with YP08",
+        r"call costs ([\d.]+) us, ([\d.]+)x the solver's own time \(`sol.wall_time`, ([\d.]+) us: .*?; ([\d.]+)x with "
+        r"YP08; .*?: the ([\d.]+) us above it",
         lambda: [
-            float(
-                re.search(
-                    r"whole call / solver ([\d.]+)x", _overhead("pf.solve(problem, 'sines'): whole call", f, "note")
-                ).group(1)
-            )
-            for f in ("none", "YP08")
+            _overhead(_WHOLE, "none", "seconds_per_call") * 1e6,
+            _whole_call_ratio("none"),
+            _overhead(_WHOLE, "none", "core_seconds") * 1e6,
+            _whole_call_ratio("YP08"),
+            _overhead(_WHOLE, "none", "overhead_seconds") * 1e6,
         ],
-        2,
+        3,
+    ),
+    "overhead: the whole sines call against py-pde's compiled stepper (README)": (
+        "README.md",
+        r"for L1 ≤ 1e-3 ([\d.]+) ms on 25 cells against ([\d.]+) ms \(sines ([\d.]+)x the stepper; YP08 ([\d.]+) ms on "
+        r"50 cells against ([\d.]+) ms, ([\d.]+)x\), for L1 ≤ 1e-5 ([\d.]+) ms on 100 cells against ([\d.]+) ms "
+        r"\(([\d.]+)x;",
+        lambda: [
+            _pypde("none", 25, "pypde_stepper_s") * 1e3,
+            _pypde("none", 25, "sines_whole_call_s") * 1e3,
+            _pypde("none", 25, "sines_over_stepper"),
+            _pypde("YP08", 50, "pypde_stepper_s") * 1e3,
+            _pypde("YP08", 50, "sines_whole_call_s") * 1e3,
+            _pypde("YP08", 50, "sines_over_stepper"),
+            _pypde("none", 100, "pypde_stepper_s") * 1e3,
+            _pypde("none", 100, "sines_whole_call_s") * 1e3,
+            _pypde("none", 100, "sines_over_stepper"),
+        ],
+        [2, 2, 3, 2, 2, 3, 3, 2, 2],
+    ),
+    "general engine: chebyshev against the peers (README)": (
+        "README.md",
+        r"L1 ≤ 1e-6 in ([\d.]+) ms, ≤ 1e-8 in ([\d.]+) ms, ≤ 1e-10 in ([\d.]+) ms \(asked tol .*? a hand-written "
+        r"Crank–Nicolson ([\d.]+) ms for 1e-4 and ([\d.]+) s for 1e-6, FiPy .*? ([\d.]+) s for 1e-4 and does not reach "
+        r"1e-6 \(([\d.e-]+) in ([\d.]+) s, 3200 cells\), py-pde .*? ([\d.]+) s for 1e-4",
+        lambda: [
+            _general(_BESQ, "chebyshev", "tol=1e-06") * 1e3,
+            _general(_BESQ, "chebyshev", "tol=1e-08") * 1e3,
+            _general(_BESQ, "chebyshev", "tol=1e-10") * 1e3,
+            _general(_BESQ, "hand Crank-Nicolson", target=1e-4) * 1e3,
+            _general(_BESQ, "hand Crank-Nicolson", target=1e-6),
+            _general(_BESQ, "FiPy (Crank-Nicolson, LU)", target=1e-4),
+            _general(_BESQ, "FiPy (Crank-Nicolson, LU)", "cells=3200, steps=400", key="L1"),
+            _general(_BESQ, "FiPy (Crank-Nicolson, LU)", "cells=3200, steps=400"),
+            _general(_BESQ, "py-pde (numba, adaptive RK)", target=1e-4),
+        ],
+        [2, 2, 2, 2, 3, 2, 2, 3, 3],
+    ),
+    "plasticity: auto on the moving wall at every tol (README)": (
+        "README.md",
+        r"`method=\"auto\"` meets every tol from 1e-3 to 1e-8, .*? ([\d.]+) ms for 1e-5, ([\d.]+) ms for 1e-6, "
+        r"([\d.]+) s for 1e-7, ([\d.]+) s for 1e-8",
+        lambda: [
+            _auto_tol(1e-5) * 1e3,
+            _auto_tol(1e-6) * 1e3,
+            _auto_tol(1e-7),
+            _auto_tol(1e-8),
+        ],
+        3,
+    ),
+    "plasticity: auto on the README's moving-wall example (README)": (
+        "README.md",
+        r"it meets 1e-3 to 1e-6 \(([\d.]+) s for 1e-6\) and refuses 1e-7 and 1e-8 .*? its best run there reached "
+        r"([\d.e-]+)\)",
+        lambda: [_auto_tol(1e-6, _PR2), _best_refused_L1()],
+        [3, 2],
     ),
     "batch: exact at 1e4 loads (README, closed form)": (
         "README.md",
@@ -194,3 +289,23 @@ def test_readme_states_the_accuracy_of_an_earlier_station():
     L1 = pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).compare().L1.ravel()
     assert [_sig(float(g), 2) for g in m.groups()] == [_sig(x, 2) for x in L1]
     assert pf.solve(pr, "fv", zeta_out=[2.0, pr.zeta_max]).error_estimate["L1"].shape == (2, 1)  # (station, load)
+
+
+def _best_refused_L1():
+    """The smallest L1 estimate that the refusals of the README's example name ("best so far: L1 ...")."""
+    rows = [r for r in _auto_tol_rows(_PR2) if r["status"] != "ok"]
+    return min(float(re.search(r"best so far: L1 ([\d.e-]+)", r["status"]).group(1)) for r in rows)
+
+
+def test_readme_auto_on_the_readmes_moving_wall_example():
+    """As the README says: 1e-3 ... 1e-6 met, 1e-7 and 1e-8 refused by a SolverError (not a wrong answer)."""
+    rows = {float(r["tol"]): r for r in _auto_tol_rows(_PR2)}
+    assert [rows[10.0**-k]["meets_tol"] for k in range(3, 7)] == ["True"] * 4
+    assert all(rows[t]["status"].startswith("SolverError: fv: tol") for t in (1e-7, 1e-8))
+
+
+def test_readme_auto_meets_every_tol_on_the_moving_wall():
+    """The README says auto meets every tol 1e-3 ... 1e-8 on the moving wall with each estimate above its true error:
+    so does the results file."""
+    assert "meets every tol from 1e-3 to 1e-8" in _text("README.md")
+    assert _auto_tol_all_met()

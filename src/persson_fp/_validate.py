@@ -7,6 +7,8 @@ or a silently wrong number downstream.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = [
@@ -33,6 +35,8 @@ def as_positive_scalar(value, name: str, *, allow_zero: bool = False) -> float:
 
     Bools, complex numbers, strings, lists and arrays of size != 1 are refused.
     """
+    if type(value) is float and math.isfinite(value) and (value > 0.0 or (allow_zero and value == 0.0)):
+        return value  # a plain finite float in range (the common case): nothing to convert
     _refuse_non_real(value, name)
     if np.ndim(value) != 0:
         raise ValueError(f"{name} must be a real number, got {value!r}")

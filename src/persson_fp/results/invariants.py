@@ -46,7 +46,7 @@ _REMEDY = (
 )
 
 
-def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
+def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None) -> dict:
     """Check the invariants every solution of Persson's diffusion problem keeps.
 
     1. finite A* and load;
@@ -64,6 +64,9 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
     raise_on_breach : bool
         True: a breached invariant raises :class:`~persson_fp.SolverError` naming it and the remedy; False: a
         ``RuntimeWarning`` with the same text (and ``info["warnings"]``).
+    extrema : tuple of float, optional
+        ``(min P0, max P0)`` over every element, where the caller has them (``Solution.build`` takes them for its
+        finiteness check); default computed here.
 
     Returns
     -------
@@ -71,14 +74,13 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
         ``min_P0``, ``negative_P0`` (any undershoot), ``area_increase`` (largest, relative to A*),
         ``area_monotone``, ``max_load_drift`` (relative), ``breaches`` (names of the broken invariants).
     """
-    tol = {**DEFAULT_TOLERANCES, **(tolerances or {})}
+    tol = {**DEFAULT_TOLERANCES, **tolerances} if tolerances else DEFAULT_TOLERANCES
     p_bar = sol.problem.p_bar
     A = sol.contact_area_all  # (a model with more contact states checks each area and their sum here)
     P = sol.P0_all
     load = sol.load_all  # the supported load; a model with a yield wall adds its plastic share here
     checks = {}
     breaches = []  # (invariant, message)
-    where = _where(sol)
 
     finite = _all_finite(A) and _all_finite(load)
     if not finite:
@@ -91,7 +93,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
     if a_min < -tol["area"] or a_max > 1.0 + tol["area"]:
         bad = (A < -tol["area"]) | (A > 1.0 + tol["area"])
         i, j = np.argwhere(bad)[0]
-        breaches.append(("area_range", f"A* = {A[i, j]:.6g} outside [0, 1] at {where(i, j)}"))
+        breaches.append(("area_range", f"A* = {A[i, j]:.6g} outside [0, 1] at {_where(sol, i, j)}"))
     if A.shape[0] > 1:
         with np.errstate(invalid="ignore", divide="ignore"):
             rel_inc = np.diff(A, axis=0) / np.maximum(np.abs(A[:-1]), np.finfo(float).tiny)
@@ -106,7 +108,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
         breaches.append(
             (
                 "area_monotone",
-                f"A* grows by {rel_inc[i, j]:.3e} (relative, > {tol['area']:.1e}) up to {where(i + 1, j)} "
+                f"A* grows by {rel_inc[i, j]:.3e} (relative, > {tol['area']:.1e}) up to {_where(sol, i + 1, j)} "
                 "(contact can only be lost, eq:Area)",
             )
         )
@@ -126,7 +128,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
             breaches.append(
                 (
                     "mass_balance",
-                    f"A* = {A[i, j]:.6g} but 1 - (absorbed at the walls) = {flux[i, j]:.6g} at {where(i, j)} "
+                    f"A* = {A[i, j]:.6g} but 1 - (absorbed at the walls) = {flux[i, j]:.6g} at {_where(sol, i, j)} "
                     f"(off by {gap[i, j]:.3e} > the far-wall loss {far:.3e} + {MASS_BALANCE_TOL:.0e})",
                 )
             )
@@ -135,25 +137,34 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
     #    (d/dzeta int p P dp = int B1 P dp - p_max J(p_max): info["load_law"], what the load must be at each station)
     law = sol.info.get("load_law")
     general = getattr(sol.problem, "general", False)
-    expected = p_bar if law is None else np.asarray(law, dtype=float).reshape(load.shape)
-    with np.errstate(invalid="ignore", over="ignore"):
-        drift = np.abs(load - expected) / p_bar
-    if not (finite and _all_finite(drift)):
-        drift = np.nan_to_num(drift, nan=np.inf)
-    tol_l = np.asarray(tol["load"], dtype=float)
+    if law is None and load.size == 1:  # one station, one load: Python floats (inf on overflow, never a warning)
+        pb = float(p_bar[0])
+        d = abs(float(load.item()) - pb) / pb
+        checks["max_load_drift"] = d = d if math.isfinite(d) else math.inf
+        drift = None  # (an array only where the element-wise test below needs it)
+    else:
+        expected = p_bar if law is None else np.asarray(law, dtype=float).reshape(load.shape)
+        with np.errstate(invalid="ignore", over="ignore"):
+            drift = np.abs(load - expected) / p_bar
+        if not (finite and _all_finite(drift)):
+            drift = np.nan_to_num(drift, nan=np.inf)
+        checks["max_load_drift"] = _lo_hi(drift)[1]
+    tol_l = tol["load"]
     extra = sol.info.get("load_law_tolerance")  # the solver's estimate of the law's and the load's own errors
-    checks["max_load_drift"] = _lo_hi(drift)[1]
     checks["load_law"] = "first-moment law" if law is not None else ("none" if general else "load balance")
     if general and law is None:  # a solver without the moment law has nothing to check the load against
         sol.info.setdefault("warnings", []).append("general coefficients: the solver gave no first-moment law")
-    over = np.zeros(drift.shape, dtype=bool)
+    tol_min = tol_l if isinstance(tol_l, float) else float(np.min(tol_l))
+    over = None
     # the element-wise test only where the largest drift exceeds the smallest tolerance (the common case skips it)
-    if (law is not None or not general) and (extra is not None or checks["max_load_drift"] > float(tol_l.min())):
-        tol_load = np.broadcast_to(tol_l, drift.shape)
+    if (law is not None or not general) and (extra is not None or checks["max_load_drift"] > tol_min):
+        if drift is None:
+            drift = np.full(load.shape, d)
+        tol_load = np.broadcast_to(np.asarray(tol_l, dtype=float), drift.shape)
         if law is not None and extra is not None:
             tol_load = tol_load + np.asarray(extra, dtype=float).reshape(drift.shape) / p_bar
         over = drift > tol_load
-    if over.any():
+    if over is not None and over.any():
         i, j = np.unravel_index(np.argmax(np.where(over, drift / tol_load, -np.inf)), drift.shape)
         what = (
             "the first-moment law int p P0 dp = p_bar + int int B1 P0 dp dzeta - p_max J"
@@ -164,22 +175,25 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
             (
                 "load_balance",
                 f"int p P0 dp deviates from {what} by {drift[i, j]:.3e} (relative to p_bar, > {tol_load[i, j]:.1e}) "
-                f"at {where(i, j)}",
+                f"at {_where(sol, i, j)}",
             )
         )
 
     # 4. P0 >= 0 (small undershoots are reported, large ones are breaches).  A dip is judged against the peak
     #    only where it carries mass: a strip that has drained (peak 1e-117) may dip to -1 x its peak in round-off,
     #    and that is no error in any area (the areas are fractions of the nominal area, which starts at 1)
-    checks["min_P0"] = float(P.min()) if P.size else 0.0
+    if extrema is None:
+        extrema = (float(P.min()), float(P.max())) if P.size else (0.0, 0.0)
+    checks["min_P0"] = p_lo = extrema[0]
     rel_neg = None
-    if checks["min_P0"] >= 0.0:  # no undershoot anywhere (the common case): nothing to weigh
+    if p_lo >= 0.0:  # no undershoot anywhere (the common case): nothing to weigh
         checks["negative_mass"] = 0.0
         checks["negative_P0"] = False
-    elif tol["negative"] >= 1e-10 and P.size == P.shape[-1] and -checks["min_P0"] <= 1e-10 * float(np.abs(P).max()):
-        # one (station, load) whose dips are round-off of its own peak: neither a breach (tol["negative"] >= 1e-10)
-        # nor an undershoot to report; the negative mass is then bounded by -min(P0) x the grid's width
-        checks["negative_mass"] = -checks["min_P0"] * float(np.sum(sol.weights))
+    elif tol["negative"] >= 1e-10 and P.size == P.shape[-1] and -p_lo <= 1e-10 * max(extrema[1], -p_lo):
+        # one (station, load) whose dips are round-off of its own peak (max |P0| = max(max P0, -min P0)): neither a
+        # breach (tol["negative"] >= 1e-10) nor an undershoot to report; the negative mass is then bounded by
+        # -min(P0) x the grid's width
+        checks["negative_mass"] = -p_lo * float(sol.weights.sum())
         checks["negative_P0"] = False
     else:
         peak = np.max(np.abs(P), axis=-1)
@@ -196,7 +210,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
             (
                 "positivity",
                 f"P0 dips to {low[i, j]:.3e} = -{rel_neg[i, j]:.2e} x its peak (> {tol['negative']:.1e}) at "
-                f"{where(i, j)} (oscillations: refine, or use an L-stable scheme)",
+                f"{_where(sol, i, j)} (oscillations: refine, or use an L-stable scheme)",
             )
         )
     elif checks["negative_P0"]:
@@ -204,7 +218,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True) -> dict:
         sol.info.setdefault("warnings", []).append(msg)
         warnings.warn(f"{sol.method}: {msg}", RuntimeWarning, stacklevel=6)
 
-    checks["breaches"] = [name for name, _ in breaches]
+    checks["breaches"] = [name for name, _ in breaches] if breaches else []
     if breaches:
         text = f"{sol.method}: invariant(s) broken: " + "; ".join(f"{n}: {m}" for n, m in breaches) + f". {_REMEDY}"
         if raise_on_breach:
@@ -234,7 +248,7 @@ def _negative_mass(sol, P):
 def _lo_hi(a):
     """(min, max) of an array as floats; one element is read directly (numpy's reductions cost ~1 us each)."""
     if a.size == 1:
-        x = float(a.reshape(-1)[0])
+        x = float(a.item())
         return x, x
     return float(a.min()), float(a.max())
 
@@ -242,17 +256,13 @@ def _lo_hi(a):
 def _all_finite(a) -> bool:
     """Whether every element of ``a`` is finite (one element read directly)."""
     if a.size == 1:
-        return math.isfinite(float(a.reshape(-1)[0]))
+        return math.isfinite(a.item())
     return bool(np.isfinite(a).all())
 
 
-def _where(sol):
-    """A formatter of (station, load) indices for messages."""
-
-    def fmt(i, j):
-        s = f"zeta = {sol.zeta[i]:.6g}"
-        if sol.problem.n_loads > 1 or not sol.problem.scalar_load:
-            s += f", p_bar = {sol.problem.p_bar[j]:.6g}"
-        return s
-
-    return fmt
+def _where(sol, i, j) -> str:
+    """Station ``i`` (and load ``j`` where there are several) of ``sol``, for a message."""
+    s = f"zeta = {sol.zeta[i]:.6g}"
+    if sol.problem.n_loads > 1 or not sol.problem.scalar_load:
+        s += f", p_bar = {sol.problem.p_bar[j]:.6g}"
+    return s

@@ -1,18 +1,17 @@
 """The result of :func:`persson_fp.solve` and its comparison with the exact solution.
 
-A :class:`Solution` holds P0 at the output stations on the method's grid, the
-derived integrals (contact area ``eq:Area``, load ``eq:Load_equilibrium``,
-variance) and what the solver did (``info``: grid, steps, rhs calls, wall
-time, options).  The invariants -- P0 >= 0, A* non-increasing, load = p_bar --
-are checked once, here (:func:`check_invariants`), against tolerances tied to the
-method's accuracy, and recorded in ``info["checks"]``; a breach raises
-:class:`SolverError` (a warning with ``check=False``) and a non-finite field
-raises :class:`InstabilityError` instead of being returned.  :meth:`Solution.compare` measures the error
-actually made against :func:`persson_fp.exact`.
+A :class:`Solution` holds P0 at the output stations on the method's grid, the derived integrals (contact area
+``eq:Area``, load ``eq:Load_equilibrium``, variance) and what the solver did (``info``: grid, steps, rhs calls, wall
+time, options).  The invariants -- P0 >= 0, A* non-increasing, load = p_bar -- are checked once, here
+(:func:`check_invariants`), against tolerances tied to the method's accuracy, and recorded in ``info["checks"]``; a
+breach raises :class:`SolverError` (a warning with ``check=False``) and a non-finite field raises
+:class:`InstabilityError` instead of being returned.  :meth:`Solution.compare` measures the error actually made
+against :func:`persson_fp.exact`.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -182,9 +181,13 @@ class Solution:
         SolverError
             With ``check=True``, a breached invariant, named with its remedy.
         """
-        zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
-        P0 = np.asarray(P0, dtype=float).reshape(zeta.size, problem.n_loads, -1)
-        if not np.isfinite(P0).all():
+        zeta = np.asarray(zeta, dtype=float)
+        zeta = zeta.reshape(1) if zeta.ndim == 0 else zeta
+        n_z, n_l = zeta.size, problem.n_loads
+        P0 = np.asarray(P0, dtype=float).reshape(n_z, n_l, -1)
+        # min and max propagate NaN and reach +-inf: both finite <=> all finite (the positivity check reuses them)
+        extrema = (float(P0.min()), float(P0.max())) if P0.size else (0.0, 0.0)
+        if not (math.isfinite(extrema[0]) and math.isfinite(extrema[1])):
             raise InstabilityError(
                 f"{method}: the solution holds NaN or inf values -- the scheme went unstable; "
                 "reduce the step (n_steps) or use an implicit scheme"
@@ -192,16 +195,17 @@ class Solution:
         weights = np.asarray(weights, dtype=float)
         if contact_area is None:
             contact_area = np.sum(P0 * _station_axis(weights), axis=-1)
-        contact_area = np.asarray(contact_area, dtype=float).reshape(zeta.size, problem.n_loads)
+        contact_area = np.asarray(contact_area, dtype=float).reshape(n_z, n_l)
         sigma_Y = None
         if problem.hardness is not None:
             sigma_Y = np.atleast_1d(problem.hardness.sigma(zeta)).astype(float)
             if plastic_area is None:
                 plastic_area = np.zeros_like(contact_area)
-            plastic_area = np.asarray(plastic_area, dtype=float).reshape(zeta.size, problem.n_loads)
+            plastic_area = np.asarray(plastic_area, dtype=float).reshape(n_z, n_l)
             contact_area = contact_area + plastic_area
-        info = dict(info or {})
-        sol = cls(
+        # every field set at once (what the frozen dataclass's __init__ does one object.__setattr__ at a time)
+        sol = object.__new__(cls)
+        sol.__dict__.update(
             method=method,
             problem=problem,
             zeta=zeta,
@@ -211,23 +215,22 @@ class Solution:
             kind=kind,
             contact_area_all=contact_area,
             wall_time=float(wall_time),
-            info=info,
+            info=dict(info) if info else {},
             contact_area_flux_all=None
             if contact_area_flux is None
-            else np.asarray(contact_area_flux, float).reshape(zeta.size, problem.n_loads),
-            stderr_area_all=None if stderr_area is None else np.asarray(stderr_area, float).reshape(zeta.size, -1),
+            else np.asarray(contact_area_flux, float).reshape(n_z, n_l),
+            stderr_area_all=None if stderr_area is None else np.asarray(stderr_area, float).reshape(n_z, -1),
             plastic_area_all=plastic_area,
             sigma_Y=sigma_Y,
-            load_estimate_all=None if load is None else np.asarray(load, float).reshape(zeta.size, problem.n_loads),
-            stderr_load_all=None if stderr_load is None else np.asarray(stderr_load, float).reshape(zeta.size, -1),
+            load_estimate_all=None if load is None else np.asarray(load, float).reshape(n_z, n_l),
+            stderr_load_all=None if stderr_load is None else np.asarray(stderr_load, float).reshape(n_z, -1),
         )
-        sol._check(tolerances, raise_on_breach=bool(check))
+        sol._check(tolerances, raise_on_breach=bool(check), extrema=extrema)
         return sol
 
-    def _check(self, tolerances=None, raise_on_breach=True):
+    def _check(self, tolerances=None, raise_on_breach=True, extrema=None):
         """Check the invariants (:func:`check_invariants`); record them in ``info["checks"]``."""
-        checks = check_invariants(self, tolerances, raise_on_breach=raise_on_breach)
-        self.info["checks"] = checks
+        self.info["checks"] = check_invariants(self, tolerances, raise_on_breach=raise_on_breach, extrema=extrema)
 
     # -- public views (load axis dropped for a scalar load) -------------------------------
     def _squeeze(self, a):
@@ -250,7 +253,9 @@ class Solution:
 
     def _moment(self, k: int) -> np.ndarray:
         """int p^k P0 dp on the grid, shape (n_zeta, n_loads)."""
-        w = _station_axis(self.weights * (self.p if k == 1 else self.p**k))
+        w = self.weights * (self.p if k == 1 else self.p**k)
+        if w.ndim == 2:  # (n_zeta, n_p): one row per station (a moving grid), broadcast over the loads
+            w = w[:, None, :]
         return (self.P0_all * w).sum(axis=-1)
 
     @property

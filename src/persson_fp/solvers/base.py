@@ -173,11 +173,11 @@ class Solver:
                     "general": "'fv' or 'mol'",
                 }
                 raise ValueError(f"method {self.name!r} does not solve {what}; use method={which[need]}")
-        self.check = check_bool(check, "check")
+        self.check = check if check is True or check is False else check_bool(check, "check")
         self.max_memory = MEMORY_BUDGET if max_memory is None else check_float(max_memory, "max_memory", 0.0)
         self.max_time = TIME_BUDGET if max_time is None else check_float(max_time, "max_time", 0.0)
-        known = set(self.OPTIONS)
-        for key in list(options):
+        known = self.OPTIONS.keys()
+        for key in list(options):  # (none given: nothing to look up)
             if key in known:
                 continue
             if key in SHARED_KNOBS:
@@ -189,6 +189,8 @@ class Solver:
             hint = f" (did you mean {close[0]!r}?)" if close else ""
             raise TypeError(f"method {self.name!r} got an unknown option {key!r}{hint}; it takes {sorted(known)}")
         self.opts = {**self.OPTIONS, **options}
+        self.given = frozenset(options)
+        """The options passed to this call (the others are the class defaults of ``OPTIONS``, valid as they are)."""
         self.zeta_out = self._check_zeta_out(zeta_out)
         self.validate()
         self.check_load_range()
@@ -244,10 +246,12 @@ class Solver:
         ``n_p``: the grid size where the method fixes it only later (mol's automatic grid).
         """
         model = MEMORY_MODELS.get(self.name)
+        if model is None:  # (a method without a memory model: nothing to estimate)
+            return
         o = dict(self.opts)
         if n_p is not None:
             o["n_p"] = n_p
-        if model is None or o.get("n_p", 0) is None:
+        if o.get("n_p", 0) is None:
             return
         args = (o, self.problem.n_loads, self.zeta_out.size, self.problem.fudge.name != "none")
         need = float(model(*args))

@@ -92,8 +92,8 @@ import numpy as np
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int, check_k_domain
 from persson_fp.solvers.sines_series import (
     _MAX_MODES,
-    _gauss_legendre,
     _modes_needed_scalar,
+    _output_rule,
     _sine_basis,
     image_area,
     modes_needed,
@@ -135,13 +135,17 @@ class SineSeriesSolver(Solver):
 
     def validate(self) -> None:
         o = self.opts
+        given = self.given  # (an option left at its default in OPTIONS is valid: only those passed are checked)
         if o["n_p"] is not None:
             o["n_p"] = check_int(o["n_p"], "n_p", 1, 10_000_000)
         if o["n_eval"] is not None:
             o["n_eval"] = check_int(o["n_eval"], "n_eval", 2, 10_000_000)
-        o["tol"] = check_float(o["tol"], "tol", 0.0, 1e-2)
-        o["rtol"] = check_float(o["rtol"], "rtol", 0.0, 1e-3)
-        o["k_domain"] = check_k_domain(o["k_domain"], 1e3)
+        if "tol" in given:
+            o["tol"] = check_float(o["tol"], "tol", 0.0, 1e-2)
+        if "rtol" in given:
+            o["rtol"] = check_float(o["rtol"], "rtol", 0.0, 1e-3)
+        if "k_domain" in given:
+            o["k_domain"] = check_k_domain(o["k_domain"], 1e3)
 
     # -- tau(V) from the series area -------------------------------------------------------------
     def _tau_map(self, tab, L, N, V_out, guess):
@@ -195,8 +199,8 @@ class SineSeriesSolver(Solver):
                     f"its PDF is too narrow for the domain [0, {L:.3g}] (sqrt(tau) = {sigma:.3g}); start zeta_out "
                     "later, use fewer/closer loads, or use pf.exact / method='fv'"
                 )
-        if tab is None:  # tau = V
-            tau = np.repeat(V_out[:, None], pb.size, axis=1)
+        if tab is None:  # tau = V (one load: a read-only view of V_out, broadcast like the repeat)
+            tau = V_out[:, None] if pb.size == 1 else np.repeat(V_out[:, None], pb.size, axis=1)
             tinfo = {"tau_map_nodes": 0, "tau_map_iterations": 0, "tau_map_residual": 0.0}
         elif pr.hardness is not None:  # the strip's exact map tau' = S(A_el + A_pl): the infinite series' own area
             tau = np.asarray(self.tau_out, dtype=float)
@@ -205,28 +209,24 @@ class SineSeriesSolver(Solver):
             tau, tinfo = self._tau_map(tab, L, N, V_out, self.tau_out)  # (n_zeta, n_loads)
 
         # output modes: those above tol / 1e3 at the first station, at most N
-        N_out = min(N, _modes_needed_scalar(L, float(np.min(tau[0])), tol * 1e-3))
+        tau_first = float(tau[0, 0]) if pb.size == 1 else float(np.min(tau[0]))
+        N_out = min(N, _modes_needed_scalar(L, tau_first, tol * 1e-3))
         if N_out > _MAX_MODES:  # (n_p given): the output alone would take ~ N_out^2 numbers
             raise ValueError(
                 f"sines: the first station zeta = {self.zeta_out[0]:.6g} needs {N_out} output modes (> {_MAX_MODES}); "
                 "start zeta_out later, use fewer/closer loads, or use pf.exact / method='fv'"
             )
         n_eval = o["n_eval"] or max(64, math.ceil(1.2 * N_out + 40))
-        xg, wg = _gauss_legendre(n_eval)
-        p = (0.5 * L) * (xg + 1.0)
-        w = (0.5 * L) * wg
-
-        n = np.arange(1, N_out + 1, dtype=float)
-        k = n * np.pi / L
+        p, w, k, mhk2, two_over_k_odd = _output_rule(L, N_out, n_eval)  # (cached per domain and size)
         with np.errstate(under="ignore"):
-            coef = (2.0 / L) * np.sin(np.outer(pb, k)) * np.exp(tau[..., None] * (-0.5 * k * k))  # (n_z, n_l, N_out)
+            coef = (2.0 / L) * np.sin(np.outer(pb, k)) * np.exp(tau[..., None] * mhk2)  # (n_z, n_l, N_out)
         P0 = coef @ _sine_basis(L, N_out, n_eval)  # (n_zeta, n_loads, n_eval)
         # odd modes carry the area (summed as before: a matmul is a little faster but moves the last bits, and
         # the notebooks quote round-off-level errors of the committed runs)
-        odd = n % 2 == 1
-        A = (coef[..., odd] * (2.0 / k[odd])).sum(axis=-1)
+        A = (coef[..., ::2] * two_over_k_odd).sum(axis=-1)  # the odd modes n = 1, 3, 5, ...
         plastic = None
         if pr.hardness is not None:  # L = sigma_Y: the mass absorbed at the yield wall, summed in closed form
+            n = np.arange(1, N_out + 1, dtype=float)
             sgn = np.where(n % 2 == 1, 1.0, -1.0)
             plastic = pb / L - (coef * (sgn * L / (n * np.pi))).sum(axis=-1)  # strip: A_pl sine series
         info = {

@@ -136,3 +136,27 @@ def _sine_basis(L: float, n_modes: int, n_eval: int) -> np.ndarray:
     if n_modes * n_eval <= _BASIS_CACHED:
         return _sine_basis_cached(L, n_modes, n_eval)
     return _form_sine_basis(L, n_modes, n_eval)
+
+
+def _form_output_rule(L: float, n_modes: int, n_eval: int):
+    """What a solve on [0, L] with ``n_modes`` output modes and ``n_eval`` nodes needs besides tau: the nodes p
+    and weights w of Gauss--Legendre on [0, L] (pressure), k_n = n pi / L (1/pressure), -k_n^2 / 2 and 2 / k_n of
+    the odd modes (the area weights, pressure), all read-only."""
+    xg, wg = _gauss_legendre(n_eval)
+    p = (0.5 * L) * (xg + 1.0)
+    w = (0.5 * L) * wg
+    k = np.arange(1, n_modes + 1, dtype=float) * np.pi / L
+    out = (p, w, k, -0.5 * k * k, 2.0 / k[::2])
+    for a in out:
+        a.setflags(write=False)
+    return out
+
+
+_output_rule_cached = functools.lru_cache(maxsize=32)(_form_output_rule)
+
+
+def _output_rule(L: float, n_modes: int, n_eval: int):
+    """:func:`_form_output_rule`, cached with the basis (repeated solves of a problem share it)."""
+    if n_modes * n_eval <= _BASIS_CACHED:
+        return _output_rule_cached(L, n_modes, n_eval)
+    return _form_output_rule(L, n_modes, n_eval)
