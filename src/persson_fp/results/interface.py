@@ -161,7 +161,8 @@ def leak_rate(
         Energy weighting of the separation.
     full_output : bool
         Return a dict with ``flow_rate``, ``effective_gap`` (length), ``sealed``, ``zeta_c`` (critical junction),
-        ``method`` and ``note`` instead of the flow rate alone.
+        ``effective_gap_error`` (effective medium: an upper estimate of the quadrature's relative error on the
+        effective gap; the flow rate's is three times it), ``method`` and ``note`` instead of the flow rate alone.
 
     Returns
     -------
@@ -177,11 +178,11 @@ def leak_rate(
     if method not in LEAK_METHODS:
         raise ValueError(f"method must be one of {list(LEAK_METHODS)}, got {method!r}")
     r = _resolved(problem, weighting)
-    zeta_c = None
+    zeta_c = gap_err = None
     if method == "critical-junction":
         gap, zeta_c = _leak.critical_junction_gap(r, problem.p_bar, A_c=A_c)
     else:
-        gap = _leak.effective_medium_gap(GapDistribution(r, problem.p_bar))
+        gap, gap_err = _leak.effective_medium_gap(GapDistribution(r, problem.p_bar), return_error=True)
     Q = _leak.flow_rate(gap, viscosity, pressure_drop, aspect)
     if not full_output:
         return _out(problem, Q)
@@ -190,6 +191,7 @@ def leak_rate(
         "effective_gap": _out(problem, gap),
         "sealed": gap <= 0 if not problem.scalar_load else bool(gap[0] <= 0),
         "zeta_c": None if zeta_c is None else _out(problem, zeta_c),
+        "effective_gap_error": None if gap_err is None else _out(problem, gap_err),
         "method": method,
         "note": "a mean-field estimate; near the percolation threshold (contact area ~0.4-0.5) only the order of "
         "magnitude is meaningful",
