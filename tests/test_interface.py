@@ -447,3 +447,27 @@ def test_interface_speed_benchmark_quick(tmp_path):
     rows = importlib.import_module("interface_speed").main(["--quick", "--output", str(tmp_path), "--repeats", "1"])
     assert len(rows) == 6 and all(r["median_s"] > 0 for r in rows)
     assert "effective gap" in (tmp_path / "interface_speed.md").read_text()
+
+
+def test_stiffness_and_conductance_refuse_complete_contact_with_the_reason():
+    """K = p/(dU/dp) grows like exp(p^2/2V) into full contact: beyond the floating-point range (dU/dp underflows,
+    or p/(dU/dp) overflows for a huge E*) it is a ValueError saying so, never inf; below it K is finite and equals
+    the finite difference of the load-separation curve."""
+    for E in (1.0, 1e150):
+        ms = pf.MeanSeparation(PSD, E, "WM17")
+        p = np.linspace(1, 40, 400) * ms.sigma_max
+        with pytest.raises(ValueError, match="full contact.*grows without bound"):
+            ms.stiffness(p)
+        ok = []
+        for pk in p:
+            try:
+                ok.append(float(ms.stiffness(pk)))
+            except ValueError:
+                break
+        assert len(ok) > 10 and np.all(np.isfinite(ok)) and np.all(np.diff(ok) > 0)
+    ms = pf.MeanSeparation(PSD, 1.0, "WM17")
+    p0, h = 2 * ms.sigma_max, 1e-4 * ms.sigma_max
+    fd = -2 * h / (ms.mean_separation(p0 + h) - ms.mean_separation(p0 - h))  # K = -dp/du, independent route
+    assert ms.stiffness(p0) == pytest.approx(fd, rel=1e-5)
+    with pytest.raises(ValueError, match="conductance is unbounded"):
+        pf.contact_conductance(pf.ContactProblem(PSD, 1.0, 100 * ms.sigma_max, fudge="WM17"), resistivity=(1, 1))

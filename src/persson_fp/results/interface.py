@@ -227,14 +227,10 @@ def contact_conductance(problem, resistivity=None, thermal_conductivity=None, we
     """
     _check(problem)
     ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
-    dU = ms.dU_dp(problem.p_bar)
-    if np.any(dU <= 0):
-        bad = float(problem.p_bar[np.argmax(dU <= 0)])
-        raise ValueError(
-            f"p_bar = {bad:.6g} is complete contact to double precision (p_bar/sqrt(V) = {bad / ms.sigma_max:.3g}): "
-            "the stiffness and the constriction conductance are unbounded there; use p_bar < ~10 sqrt(V(zeta_max))"
-        )
-    K = problem.p_bar / dU
+    try:
+        K = ms.stiffness(problem.p_bar)
+    except ValueError as e:
+        raise ValueError(f"{e}; the constriction conductance is unbounded there as well") from None
     return _out(problem, _leak.barber_conductance(K, problem.E_star, resistivity, thermal_conductivity))
 
 
