@@ -276,6 +276,12 @@ def flow_rate(gap, viscosity, pressure_drop, aspect=1.0) -> np.ndarray:
     -------
     ndarray, length^3 / time
         Q, of the shape of ``gap``.
+
+    Raises
+    ------
+    ValueError
+        A value out of range, or a Q that overflows or, for an open gap, underflows the floating-point range
+        (it would read as a sealed seal).
     """
     eta = as_positive_scalar(viscosity, "viscosity")
     dp = as_positive_scalar(pressure_drop, "pressure_drop")
@@ -283,7 +289,15 @@ def flow_rate(gap, viscosity, pressure_drop, aspect=1.0) -> np.ndarray:
     u = as_float_array(gap, "gap")
     if np.any(u < 0):
         raise ValueError("gap must be >= 0 (length)")
-    return aspect * u**3 * dp / (12.0 * eta)
+    with np.errstate(over="ignore", under="ignore"):
+        Q = aspect * u**3 * dp / (12.0 * eta)
+    bad = ~np.isfinite(Q) | ((u > 0) & (Q < np.finfo(float).tiny))
+    if np.any(bad):
+        raise ValueError(
+            f"the flow rate u^3 dp/(12 eta) leaves the floating-point range (gap {float(u[bad].flat[0]):.3g}, "
+            f"viscosity {eta!r}, pressure_drop {dp!r}, aspect {aspect!r}): rescale the units (e.g. mm, MPa, Pa s)"
+        )
+    return Q
 
 
 def _pair(value, name):
