@@ -18,8 +18,12 @@ area and pull-off.  Two stickiness estimates from the spectrum are offered: Pers
 (2001) 5597) compare w, times the true-area ratio, with the elastic energy of full contact; Pastewka & Robbins
 (PNAS 111 (2014) 3298, their Eq. 10 with :math:`\kappa_{rep} = 2`) give the number
 :math:`\frac{h'_{rms}E^*\rho}{2w}\left(\frac{h'^2_{rms}}{h''_{rms}\rho}\right)^{2/3}`, sticky below 1.  Here
-:math:`h''_{rms}` is taken as the rms mean curvature :math:`\tfrac12\langle(\nabla^2 h)^2\rangle^{1/2}` (the
-convention of ContactEngineering's SurfaceTopography; reconstructed, not checked against the paper's text).
+:math:`h''_{rms}` is the rms mean curvature :math:`\tfrac12\langle(\nabla^2 h)^2\rangle^{1/2}`.  Checked against
+ContactEngineering: its Adhesion package's rough-contact example (``examples/adhesive_simulation_rough.py``, "P&R
+equation 10, with kappa_rep = 2") evaluates exactly this number with SurfaceTopography's ``rms_gradient`` and
+``rms_curvature_from_area``, and the latter is documented there as half the rms Laplacian; the Tabor-like parameter
+below is the same example's "generalized Tabor parameter following Martin Müser" (tests: the number from a height
+map's own rms gradient and half rms Laplacian, 1e-2).
 
 What was checked: :math:`p_{att}` against adaptive quadrature of :math:`\int P\sigma\,du` for every law (tests,
 1e-6), the closed-form folded-normal means, the pull-off against brute-force minimisation, the limit
@@ -296,7 +300,11 @@ def pastewka_robbins(psd, E_star, w, rho) -> dict:
     r"""Pastewka-Robbins stickiness number (PNAS 111 (2014) 3298, Eq. 10, :math:`\kappa_{rep} = 2`).
 
     :math:`\Pi = \frac{h'_{rms}E^*\rho}{2w}\left(\frac{h'^2_{rms}}{h''_{rms}\rho}\right)^{2/3}`: sticky for
-    :math:`\Pi < 1`.  Valid for short-range adhesion (:math:`\rho` small against the roughness).
+    :math:`\Pi < 1`, with :math:`h'_{rms} = \langle|\nabla h|^2\rangle^{1/2}` and :math:`h''_{rms} =
+    \tfrac12\langle(\nabla^2 h)^2\rangle^{1/2}` (as ContactEngineering evaluates it; module docstring).  Valid for
+    short-range adhesion: ``range_ratio`` :math:`= \rho/g_0`, :math:`g_0 = \tfrac{16}{3}h'^2_{rms}/h''_{rms}`
+    (Monti, Sanner & Pastewka, Tribol. Lett. (2021), doi:10.1007/s11249-021-01454-6), should be well below 1
+    (ContactEngineering's example asks for 0.1).
 
     Parameters
     ----------
@@ -312,14 +320,22 @@ def pastewka_robbins(psd, E_star, w, rho) -> dict:
     Returns
     -------
     dict
-        ``number`` (dimensionless), ``sticky`` (bool), ``rms_slope``, ``rms_curvature`` (1/length).
+        ``number`` (dimensionless), ``sticky`` (bool), ``rms_slope``, ``rms_curvature`` (1/length) and
+        ``range_ratio`` (:math:`\rho/g_0`, dimensionless).
     """
     E_star = as_positive_scalar(E_star, "E_star")
     w = as_positive_scalar(w, "w")
     rho = as_positive_scalar(rho, "rho")
     h1, h2 = _moments(psd)
     number = h1 * E_star * rho / (2.0 * w) * (h1 * h1 / (h2 * rho)) ** (2.0 / 3.0)
-    return {"number": number, "sticky": bool(number < 1.0), "rms_slope": h1, "rms_curvature": h2}
+    g0 = 16.0 / 3.0 * h1 * h1 / h2
+    return {
+        "number": number,
+        "sticky": bool(number < 1.0),
+        "rms_slope": h1,
+        "rms_curvature": h2,
+        "range_ratio": rho / g0,
+    }
 
 
 def tabor_parameter(psd, E_star, w, rho) -> float:
