@@ -484,8 +484,10 @@ def test_stiffness_and_conductance_refuse_complete_contact_with_the_reason():
     p0, h = 2 * ms.sigma_max, 1e-4 * ms.sigma_max
     fd = -2 * h / (ms.mean_separation(p0 + h) - ms.mean_separation(p0 - h))  # K = -dp/du, independent route
     assert ms.stiffness(p0) == pytest.approx(fd, rel=1e-5)
+    with pytest.warns(UserWarning, match="exceeds the contact modulus"):
+        full = pf.ContactProblem(PSD, 1.0, 100 * ms.sigma_max, fudge="WM17")
     with pytest.raises(ValueError, match="conductance is unbounded"):
-        pf.contact_conductance(pf.ContactProblem(PSD, 1.0, 100 * ms.sigma_max, fudge="WM17"), resistivity=(1, 1))
+        pf.contact_conductance(full, resistivity=(1, 1))
 
 
 def test_pastewka_robbins_number_from_a_height_map_as_contact_engineering_evaluates_it():
@@ -509,3 +511,73 @@ def test_pastewka_robbins_number_from_a_height_map_as_contact_engineering_evalua
     assert pr["rms_slope"] == pytest.approx(grad, rel=1e-6) and pr["rms_curvature"] == pytest.approx(curv, rel=1e-2)
     assert pr["number"] == pytest.approx(ref, rel=1e-2)
     assert pr["range_ratio"] == pytest.approx(rho / (16 / 3 * grad**2 / curv), rel=1e-2)
+
+
+def test_exponential_folded_mean_short_range_limit_and_continuity():
+    """E[sigma(|X|)] for the exponential law: the erfcx form used where h/rho > c/h agrees with adaptive quadrature
+    on both sides of the switch, and tends to w P(0) = w 2 phi(c/h)/h as rho -> 0 (it was NaN below rho ~ 1e-150)."""
+    c, h, w = 1.0, 0.5, 2e-3
+    for rho in (0.3, 0.26, 0.24, 0.05):  # the switch is at h/rho = c/h, rho = 0.25
+        law = pf.adhesion.Exponential(w=w, rho=rho)
+        ref = quad(
+            lambda u: (
+                w
+                / rho
+                * np.exp(-u / rho)
+                * (np.exp(-0.5 * ((u - c) / h) ** 2) + np.exp(-0.5 * ((u + c) / h) ** 2))
+                / (np.sqrt(2 * np.pi) * h)
+            ),
+            0,
+            c + 20 * h,
+            epsrel=1e-12,
+            points=[c],
+        )[0]
+        assert float(law.folded_mean(c, h)) == pytest.approx(ref, rel=1e-9)
+    limit = w * 2 * np.exp(-0.5 * (c / h) ** 2) / (np.sqrt(2 * np.pi) * h)
+    for rho in (1e-8, 1e-100, 1e-290):
+        assert float(pf.adhesion.Exponential(w=w, rho=rho).folded_mean(c, h)) == pytest.approx(limit, rel=1e-6)
+
+
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda p: pf.leak_rate(p, 1e-320, 1.0), "floating-point range"),
+        (lambda p: pf.leak_rate(p, 1e-305, 1e300), "rescale the units"),
+        (lambda p: pf.leak_rate(p, 1.0, 1.0, A_c=1e-320), "A_c must lie"),
+        (lambda p: pf.adhesion.Exponential(w=1e308, rho=8e-3), "w / rho"),
+        (lambda p: pf.adhesion.Exponential(w=1e-5, rho=1e-320), "w / rho"),
+        (lambda p: pf.adhesion.LennardJones93(w=1e-5, rho=1e-320), "w / rho"),
+        (lambda p: pf.adhesion.MaugisDugdale(w=1e-5, sigma0=1e-320), "w / sigma0"),
+        (lambda p: pf.adhesive_contact(p, lambda u: 1 / 0, rho=1e-2), "callable failed"),
+        (lambda p: pf.adhesive_contact(p, lambda u: np.exp(-u), rho=1e-320), "w / rho"),
+        (lambda p: pf.gap_distribution(p, solution="sol"), "solution must be"),
+        (lambda p: pf.contact_conductance(p, resistivity=([1.0, 2.0], 1.0)), "resistivity must be a pair"),
+        (lambda p: pf.contact_conductance(p.with_loads(1e3), resistivity=(1.0, 1.0)), "full contact"),
+        (lambda p: pf.gap_distribution(pf.ContactProblem(PSD, 1.0, 0.01, hardness=0.05)), "hardness"),
+        (lambda p: pf.leak_rate(pf.ContactProblem(PSD, 1.0, 0.01, hardness=0.05), 1.0, 1.0), "hardness"),
+        (lambda p: pf.ContactProblem(PSD, 1.0, []), "at least one load"),
+    ],
+)
+def test_fuzzed_interface_inputs_are_value_errors_naming_the_cause(call, match):
+    """Found by fuzzing the interface API (bad, huge, tiny and non-finite values): each was a NaN, an inf, a
+    FloatingPointError, a ZeroDivisionError or an AttributeError, or a message naming another parameter."""
+    with pytest.raises(ValueError, match=match):
+        call(pf.ContactProblem(PSD, 1.0, np.array([1e-3, 1e-2]), fudge="WM17"))
+
+
+def test_fuzzed_interface_extremes_give_correct_numbers():
+    """Huge and tiny loads, huge pdf arguments: numbers, not errors, and the right limits (sealed; no contact;
+    zero density far out)."""
+    with pytest.warns(UserWarning, match="exceeds the contact modulus"):
+        huge = pf.ContactProblem(PSD, 1.0, 1e6, fudge="WM17")
+    for method in ("critical-junction", "effective-medium"):
+        assert pf.leak_rate(huge, 1.0, 1.0, method=method) == 0.0
+    gd = pf.gap_distribution(huge)
+    assert gd.contact_fraction == 1.0 and gd.mean == 0.0
+    tiny = pf.ContactProblem(PSD, 1.0, 1e-300, fudge="WM17")
+    gd = pf.gap_distribution(tiny)
+    assert 0.0 <= gd.contact_fraction < 1e-100 and gd.normalisation == pytest.approx(1.0, abs=1e-12)
+    assert np.isfinite(pf.leak_rate(tiny, 1.0, 1.0, method="effective-medium")) and gd.mean > 0
+    assert pf.gap_distribution(pf.ContactProblem(PSD, 1.0, 1e-3)).pdf(1e308) == 0.0
+    ad = pf.adhesive_contact(pf.ContactProblem(PSD, 1.0, 1e-3), pf.adhesion.Exponential(w=1e-5, rho=1e-290))
+    assert np.isfinite(ad.p_attractive) and np.isfinite(ad.pull_off)

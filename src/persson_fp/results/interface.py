@@ -120,6 +120,8 @@ def gap_distribution(
     if solution is None:
         gd = GapDistribution(r, problem.p_bar, n_area=n_area, n_zeta=n_zeta, weight_cut=weight_cut)
     else:
+        if not hasattr(solution, "contact_area_all") or not hasattr(solution, "problem"):
+            raise ValueError(f"solution must be a numerical Solution of this problem, got {type(solution).__name__}")
         if getattr(solution, "problem", None) is not problem and not np.array_equal(
             solution.problem.p_bar, problem.p_bar
         ):

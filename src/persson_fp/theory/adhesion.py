@@ -61,6 +61,17 @@ __all__ = [
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(64)
 
 
+def _check_scale(w, rho, rho_name="rho"):
+    """The peak traction ~ w/rho must be a finite number (else the law is outside the floating-point range)."""
+    with np.errstate(over="ignore"):
+        peak = w / rho
+    if not np.isfinite(peak):
+        raise ValueError(
+            f"w / {rho_name} = {w!r} / {rho!r} (the peak attraction, pressure) leaves the floating-point range; "
+            "rescale the units"
+        )
+
+
 class Interaction:
     r"""An attractive traction law :math:`\sigma_{att}(u) \ge 0` (pressure) at gap u >= 0 (length).
 
@@ -93,7 +104,10 @@ class Interaction:
         hi = c + 9.0 * h
         near = lo <= 0.0
         x = 0.5 * (_GL_X + 1.0)[None, :]
-        L = np.log1p(hi / self.rho)
+        with np.errstate(over="ignore"):
+            L = np.log1p(hi / self.rho)
+        if not np.all(np.isfinite(L)):
+            raise ValueError(f"rho = {self.rho!r} is too small against the gaps (gap / rho overflows); rescale units")
         u_log = self.rho * np.expm1(L * x)
         du_log = L * (u_log + self.rho)
         u_lin = lo + (hi - lo) * x
@@ -123,17 +137,28 @@ class Exponential(Interaction):
     def __init__(self, w: float, rho: float):
         self.w = as_positive_scalar(w, "w")
         self.rho = as_positive_scalar(rho, "rho")
+        _check_scale(self.w, self.rho)
 
     def sigma(self, u):
         return self.w / self.rho * np.exp(-np.asarray(u, float) / self.rho)
 
     def folded_mean(self, c, h):
-        r"""Closed form: :math:`\frac{w}{\rho}\sum_\pm e^{\mp c/\rho + h^2/2\rho^2}\Phi(\pm c/h - h/\rho)`."""
-        c, h = np.asarray(c, float), np.asarray(h, float)
+        r"""Closed form: :math:`\frac{w}{\rho}\sum_\pm e^{\mp c/\rho + h^2/2\rho^2}\Phi(\pm c/h - h/\rho)`.
+
+        Where :math:`h/\rho > c/h` each term is written :math:`\tfrac12 e^{-c^2/2h^2}\mathrm{erfcx}((h/\rho \mp
+        c/h)/\sqrt2)` (the same number; no overflow of :math:`e^{h^2/2\rho^2}` when the range is short against the
+        widths, where the limit is :math:`w\,P(0)`).
+        """
+        c, h = np.broadcast_arrays(np.asarray(c, float), np.asarray(h, float))
         a = h / self.rho
-        with np.errstate(over="ignore", under="ignore"):
-            plus = np.exp(-c / self.rho + 0.5 * a * a + log_ndtr(c / h - a))
-            minus = np.exp(c / self.rho + 0.5 * a * a + log_ndtr(-c / h - a))
+        r = c / h
+        with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+            plus = np.exp(-c / self.rho + 0.5 * a * a + log_ndtr(r - a))
+            minus = np.exp(c / self.rho + 0.5 * a * a + log_ndtr(-r - a))
+            g = np.exp(-0.5 * r * r)
+            short = a > r  # erfcx form: both arguments >= 0
+            plus = np.where(short, 0.5 * g * erfcx((a - r) / np.sqrt(2.0)), plus)
+            minus = np.where(short, 0.5 * g * erfcx((a + r) / np.sqrt(2.0)), minus)
         return self.w / self.rho * (plus + minus)
 
 
@@ -153,7 +178,10 @@ class MaugisDugdale(Interaction):
     def __init__(self, w: float, sigma0: float):
         self.w = as_positive_scalar(w, "w")
         self.sigma0 = as_positive_scalar(sigma0, "sigma0")
-        self.rho = self.w / self.sigma0
+        with np.errstate(over="ignore"):
+            self.rho = self.w / self.sigma0
+        if not np.isfinite(self.rho):
+            raise ValueError(f"w / sigma0 = {w!r} / {sigma0!r} (the range, length) leaves the floating-point range")
 
     def sigma(self, u):
         u = np.asarray(u, float)
@@ -185,6 +213,7 @@ class LennardJones93(Interaction):
     def __init__(self, w: float, rho: float):
         self.w = as_positive_scalar(w, "w")
         self.rho = as_positive_scalar(rho, "rho")
+        _check_scale(self.w, self.rho)
 
     def sigma(self, u):
         x = self.rho / (np.asarray(u, float) + self.rho)
@@ -211,7 +240,10 @@ class CallableInteraction(Interaction):
             raise ValueError(f"interaction must be an Interaction or a callable sigma(u); got {fn!r}")
         self.fn = fn
         self.rho = as_positive_scalar(rho, "rho")
-        probe = np.asarray(fn(self.rho * np.geomspace(1e-6, 1e3, 64)), dtype=float)
+        try:
+            probe = np.asarray(fn(self.rho * np.geomspace(1e-6, 1e3, 64)), dtype=float)
+        except Exception as e:  # the user's function: any failure is a bad input
+            raise ValueError(f"the interaction callable failed on an array of gaps: {type(e).__name__}: {e}") from e
         if probe.shape != (64,) or not np.all(np.isfinite(probe)) or np.any(probe < 0):
             raise ValueError("the interaction callable must return finite values >= 0 for an array of gaps u >= 0")
         if w is None:
@@ -219,6 +251,7 @@ class CallableInteraction(Interaction):
 
             w = quad(lambda u: float(fn(np.array([u]))[0]), 0.0, np.inf, limit=200)[0]
         self.w = as_positive_scalar(w, "w")
+        _check_scale(self.w, self.rho)
         self.name = getattr(fn, "__name__", "user")
 
     def sigma(self, u):

@@ -50,8 +50,8 @@ A_C_DEFAULT = 0.42
 
 def _check_A_c(A_c):
     A_c = as_positive_scalar(A_c, "A_c")
-    if not 0.0 < A_c < 1.0:
-        raise ValueError(f"A_c must lie in (0, 1), got {A_c!r}")
+    if not 1e-12 <= A_c <= 1.0 - 1e-12:
+        raise ValueError(f"A_c must lie in (0, 1) (at least 1e-12 from either end), got {A_c!r}")
     return A_c
 
 
@@ -301,7 +301,12 @@ def flow_rate(gap, viscosity, pressure_drop, aspect=1.0) -> np.ndarray:
 
 
 def _pair(value, name):
-    v = as_float_array(value, name)
+    try:
+        v = as_float_array(value, name)
+    except ValueError as e:
+        if name in str(e):
+            raise
+        raise ValueError(f"{name} must be a pair of finite values > 0 (one per body), got {value!r}") from None
     if v.shape != (2,) or not np.all(np.isfinite(v)) or np.any(v <= 0):
         raise ValueError(f"{name} must be a pair of finite values > 0 (one per body), got {value!r}")
     return v
