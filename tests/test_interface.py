@@ -581,3 +581,28 @@ def test_fuzzed_interface_extremes_give_correct_numbers():
     assert pf.gap_distribution(pf.ContactProblem(PSD, 1.0, 1e-3)).pdf(1e308) == 0.0
     ad = pf.adhesive_contact(pf.ContactProblem(PSD, 1.0, 1e-3), pf.adhesion.Exponential(w=1e-5, rho=1e-290))
     assert np.isfinite(ad.p_attractive) and np.isfinite(ad.pull_off)
+
+
+def test_effective_medium_near_the_threshold_terminates_with_the_linear_law():
+    """Contact fractions within 1e-6 ... 1e-16 of 1/2 (found by fuzzing the table depth): the root is found (the
+    table deepens, up to 60 decades) and, with a finite density P(0) at u = 0, u_e vanishes linearly in 1 - 2A,
+    u_e ~ (1 - 2A) / (P(0) K) (the small-u expansion of the Bruggeman integral, written here)."""
+    c, h = np.array([1.0, 0.01]), np.array([0.5, 0.005])
+    shares = np.array([0.99, 0.01])
+    P0 = None
+    for gap in (1e-6, 1e-9, 1e-12):
+        A = 0.5 - gap / 2
+        w = shares * (1 - A)
+        fake = SimpleNamespace(centres=c[None], widths=h[None], weights=w[None], atom=np.array([A]))
+        u_e, err = leakage.effective_medium_gap(fake, return_error=True)
+        P0 = np.sum(w * 2 * np.exp(-0.5 * (c / h) ** 2) / (np.sqrt(2 * np.pi) * h))
+        assert u_e[0] > 0 and np.isfinite(err[0])
+        # F = -A + int P tanh(1.5 ln(u/u_e)) du = (1 - 2A) - int P (1 - tanh) du ~ (1 - 2A) - P(0) u_e K
+        K = (
+            quad(lambda y: 1 - np.tanh(1.5 * np.log(y)), 0, 1)[0]
+            + quad(lambda y: 1 - np.tanh(1.5 * np.log(y)), 1, np.inf)[0]
+        )
+        assert u_e[0] == pytest.approx(gap / (P0 * K), rel=1e-3)
+    A = np.nextafter(0.5, 0.0)
+    fake = SimpleNamespace(centres=c[None], widths=h[None], weights=(shares * (1 - A))[None], atom=np.array([A]))
+    assert 0 < leakage.effective_medium_gap(fake)[0] < 1e-14

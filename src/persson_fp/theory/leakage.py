@@ -146,13 +146,13 @@ def effective_medium_gap(gaps, return_error: bool = False):
             )
             dv_all[j] = dv
             # a root within 8 of the table's bottom (u_e < ~1e-3 of the largest gap x 1e-3): deepen the table
-            shallow = x > -np.max(depth[j]) + 8.0
-            depth[j] = np.where(shallow, depth[j], -x + 9.0)
+            shallow = (x > -np.max(depth[j]) + 8.0) | (depth[j] >= _DEPTH_MAX)
+            depth[j] = np.where(shallow, depth[j], np.minimum(-x + 9.0, _DEPTH_MAX))
             err[j] = np.where(shallow, err[j], np.inf)
         # halve the spacing where the estimate (x 3: it is within a factor 2 when resolved) exceeds the target
-        redo = (_SAFETY * err[todo] > _TOL) & (dv_all[todo] > _DV_MIN)
         deeper = ~np.isfinite(err[todo])
-        dv_all[todo[redo & ~deeper]] *= 0.5
+        redo = (_SAFETY * err[todo] > _TOL) & (dv_all[todo] > _DV_MIN) & ~deeper
+        dv_all[todo[redo]] *= 0.5
         todo = todo[redo | deeper]
     if not return_error:
         return out
@@ -162,6 +162,7 @@ def effective_medium_gap(gaps, return_error: bool = False):
 _CHUNK = 64
 _DV_MIN, _DV_MAX = 0.005, 0.2
 _DEPTH = 6.0 * np.log(10.0)  # the table spans 6 decades below the largest gap unless the root is deeper
+_DEPTH_MAX = 60.0 * np.log(10.0)  # a root deeper than 60 decades (contact fraction within ~1e-16 of 1/2) is left
 _TOL = 1e-6  # target relative error of u_e
 _SAFETY = 3.0
 _FLOOR = 1e-10  # the root (|F| < 1e-13) and the sigmoid's tails (2e-24) below the estimate's reach
@@ -242,7 +243,8 @@ def _bruggeman_chunk(c, h, w, atom, dv, depth):
             break
         lo = np.where(f > 0, x, lo)
         hi = np.where(f > 0, hi, x)
-        x_new = x - f / dF(x)
+        with np.errstate(divide="ignore", invalid="ignore"):  # dF = 0 (rho underflowed): bisect instead
+            x_new = x - f / dF(x)
         x = np.where((x_new > lo) & (x_new < hi) & np.isfinite(x_new), x_new, 0.5 * (lo + hi))
     # the trapezoidal rule's error on the mass (known: 1) measures its error on F; in x it is divided by dF/dx
     d = np.abs(dF(x))
@@ -253,8 +255,9 @@ def _bruggeman_chunk(c, h, w, atom, dv, depth):
         t = np.tanh(1.5 * (off[::2][None, :] - x2[:, None]))
         t2 = t[:, 0]
         f2 = base + 4.0 * em * (t2 + 1.5 * (1.0 - t2 * t2)) + 2.0 * dv * np.sum(r2 * t, axis=1)
-        x2 = x2 + f2 / (3.0 * dv * np.sum(r2 * (1.0 - t * t), axis=1))
-    with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore"):  # a coarse rule with no slope: its shift is inf
+            x2 = x2 + f2 / (3.0 * dv * np.sum(r2 * (1.0 - t * t), axis=1))
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         return np.exp(v_hi + x), np.minimum(mass_err / d, np.inf), np.abs(np.expm1(x2 - x)), x
 
 
