@@ -106,3 +106,77 @@ def test_surface_csv_is_read_by_plain_pandas(tmp_path):
     df = pd.read_csv(tmp_path / "o" / "surface.csv")
     assert len(df) == 5 and {"p_bar", "A_WM17", "u_YP08", "K_none", "Q_em_Xu24"} <= set(df.columns)
     assert json.load(open(tmp_path / "o" / "surface.json"))["E_star"] > 0
+
+
+def test_surface_png_has_the_gap_panels(tmp_path):
+    """The figure: spectrum, area, load-separation, stiffness, and the gap panels (P(u) with the contact atom as
+    arrows carrying its weight, the leak rate against the load with sealed loads ticked); the CLI with --viscosity
+    and --pressure-drop writes it."""
+    from persson_fp.cli.surface import GAP_MODEL, _figure
+
+    psd = pf.psd_from_heightmap(_bem_map(64), 1.0, periodic=True).psd
+    sV = float(np.sqrt(psd.V()))
+    ratio = np.geomspace(1e-3, 3.0, 12)
+    p = ratio * sV
+    problem = pf.ContactProblem(psd, 1.0, p, fudge=GAP_MODEL)
+    gd = pf.gap_distribution(problem)
+    Q_cj, Q_em = pf.leak_rate(problem, 1.0, 1.0), pf.leak_rate(problem, 1.0, 1.0, method="effective-medium")
+    assert Q_cj[-1] == 0 and Q_cj[0] > 0  # both open and sealed loads are drawn
+    ms = pf.MeanSeparation(psd, 1.0, GAP_MODEL)
+    A = {n: pf.exact(pf.ContactProblem(psd, 1.0, p)).contact_area for n in ("none", "YP08", "WM17", "Xu24")}
+    u = {n: ms.mean_separation(p) for n in A}
+    K = {n: ms.stiffness(p) for n in A}
+    fig = _figure(psd, ratio, p, A, u, K, "test", gd, Q_cj, Q_em)
+    axes = fig.get_axes()
+    assert len(axes) == 6
+    gap_ax = next(a for a in axes if a.get_title().startswith("gap distribution P(u)"))
+    leak_ax = next(a for a in axes if a.get_title().startswith("leak rate"))
+    assert "gap u" in gap_ax.get_xlabel() and "P(u)" in gap_ax.get_ylabel()
+    assert len(gap_ax.get_lines()) >= 4
+    # the atom arrows carry the contact fractions (3 significant digits)
+    texts = {t.get_text() for t in gap_ax.texts}
+    shown = [k for k in range(gd.n_loads) if f"{gd.contact_fraction[k]:.3g}" in texts]
+    assert len(shown) >= 3
+    labels = [ln.get_label() for ln in leak_ax.get_lines()]
+    assert "critical junction" in labels and "effective medium" in labels
+    assert "Q" in leak_ax.get_ylabel() and leak_ax.get_xscale() == leak_ax.get_yscale() == "log"
+    np.save(tmp_path / "h.npy", _bem_map(64))
+    args = ["surface", str(tmp_path / "h.npy"), "--size", "1", "--periodic", "--n-loads", "6"]
+    assert main(args + ["--viscosity", "1e-3", "--pressure-drop", "1e5", "--output", str(tmp_path / "o")]) == 0
+    assert (tmp_path / "o" / "surface.png").stat().st_size > 1000
+
+
+@pytest.mark.parametrize(
+    "content, extra, message",
+    [
+        (b"", [], "2-D array"),
+        (b"\x93NUMPYgarbage", [], "cannot read a height map"),
+        (bytes(range(256)) * 4, [], "cannot read a height map"),
+        (b"1 2 3\n4 5\n", [], "cannot read a height map"),
+        (b"1 2\nnan 4\n", [], "finite"),
+        (b"Subject type;Subject name;Function name;Data series;Wavevector;PSD\n", [], "usable points"),
+        (None, ["--size", "1e300"], "--size 1e+300"),
+        (None, ["--size", "1e-300"], "--size 1e-300"),
+        (None, ["--E-star", "1e308"], "--E-star"),
+        (None, ["--E-star", "1e-308"], "--E-star"),
+        (None, ["--ratio-max", "1e6"], "--ratio-max"),
+        (None, ["--viscosity", "nan"], "--viscosity"),
+        (None, ["--pressure-drop", "-1"], "--pressure-drop"),
+        (None, ["--viscosity", "1e-308", "--size", "1e-3"], "rescale the units"),
+    ],
+)
+def test_surface_command_fuzzed_files_and_options_are_one_line_errors(tmp_path, capsys, content, extra, message):
+    """Found by fuzzing the command: bad files and options give one line on stderr and exit status 2 (no
+    traceback, no multi-line warnings, no silently infinite flow rate); huge sizes and moduli name the option."""
+    path = tmp_path / ("h.npy" if content is None else "bad.txt")
+    if content is None:
+        np.save(path, np.random.default_rng(0).standard_normal((32, 32)))
+    else:
+        path.write_bytes(content)
+    argv = ["surface", str(path), "--n-loads", "4", "--output", str(tmp_path / "o")]
+    argv += extra if "--size" in extra else ["--size", "1", *extra]
+    rc = main(argv)
+    captured = capsys.readouterr()
+    err = captured.err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1 and message in err and "Traceback" not in err, err
+    assert all(ln.startswith(("warning: ", "note: ")) or "Warning" not in ln for ln in captured.out.splitlines())

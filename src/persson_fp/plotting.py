@@ -408,3 +408,72 @@ def plot_pdf_waterfall(
     ax.set_zlabel(r"$P_0\,\sqrt{V(\zeta_{max})}$")
     ax.set_title("P0(p, ζ) (red) and the atom 1 − A* at p = 0 (blue, length = weight × max P0)", fontsize=9)
     return ax.figure
+
+
+# -- what happens in the gaps (issue 23) ------------------------------------------------------------------------------
+__all__ += ["plot_gap_pdf", "plot_leak_rate"]
+
+
+def plot_gap_pdf(gaps, loads: Sequence[int] | None = None, ax: Axes | None = None, n_u: int = 400) -> Figure:
+    r"""The gap distribution P(u) (Almqvist et al., JMPS 59 (2011) 2355) at a few loads, the contact atom
+    :math:`A(\zeta_{max})\delta(u)` at u = 0 drawn as an arrow carrying its weight.
+
+    Parameters
+    ----------
+    gaps : GapDistribution
+        From :func:`persson_fp.gap_distribution`.
+    loads : sequence of int, optional
+        Indices of the loads to draw (default: up to four, spread over the loads).
+    ax : matplotlib.axes.Axes, optional
+    n_u : int
+        Points in u, from 0 to the largest mean gap plus four standard deviations.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, ax = _axes(ax)
+    n = gaps.n_loads
+    idx = list(loads) if loads is not None else sorted({int(round(k)) for k in np.linspace(0, n - 1, min(n, 4))})
+    mean, std = np.atleast_1d(gaps.mean), np.atleast_1d(gaps.std)
+    u = np.linspace(0.0, float(np.max(mean[idx] + 4.0 * std[idx])) or 1.0, n_u)
+    pdf = np.asarray(gaps.pdf(u)).reshape(n, n_u)
+    atom = np.atleast_1d(gaps.contact_fraction)
+    peak = float(np.max(pdf[idx])) or 1.0
+    for c, k in enumerate(idx):
+        col = f"C{c}"
+        ax.plot(u, pdf[k], color=col, label=rf"$\bar p$ = {gaps.p_bar[k]:.3g}")
+        if atom[k] > 0:
+            plot_atom(ax, atom[k], max(atom[k], 0.05) * peak, color=col, text=True, fontsize=7)
+    ax.set(xlabel="gap u  [length]", ylabel="P(u)  [1/length]", title="gap distribution (arrows: contact atom A)")
+    ax.legend(fontsize=7)
+    return fig
+
+
+def plot_leak_rate(p_bar: ArrayLike, curves: Mapping, ax: Axes | None = None) -> Figure:
+    """Leak rate Q against the nominal pressure (Lorenz & Persson 2009, 2010), log-log; loads where a curve is 0
+    (the seal closed) are marked on the bottom axis.
+
+    Parameters
+    ----------
+    p_bar : array_like, pressure
+        Loads.
+    curves : mapping
+        Label -> flow rates Q (length^3/time) at ``p_bar``.
+    ax : matplotlib.axes.Axes, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, ax = _axes(ax)
+    p = np.asarray(p_bar, dtype=float)
+    for c, (label, Q) in enumerate(curves.items()):
+        Q = np.asarray(Q, dtype=float)
+        open_ = Q > 0
+        ax.loglog(p[open_], Q[open_], color=f"C{c}", label=label)
+        if np.any(~open_):
+            ax.plot(p[~open_], np.zeros(np.sum(~open_)), "|", color=f"C{c}", ms=8, transform=ax.get_xaxis_transform())
+    ax.set(xlabel=r"$\bar p$  [pressure]", ylabel="Q  [length$^3$/time]", title="leak rate (ticks: sealed)")
+    ax.legend(fontsize=7)
+    return fig

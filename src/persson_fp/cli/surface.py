@@ -6,7 +6,8 @@ range of loads, for every fudge model: the contact area A* (Xu et al. tutorial, 
 mean separation u and the normal stiffness K = -dp/du (Persson, Phys. Rev. Lett. 99 (2007) 125502; Yang & Persson,
 J. Phys.: Condens. Matter 20 (2008) 215214) as a CSV with units and a PNG; and what happens in the gaps: the mean of
 the gap distribution, the leak rate of a square seal (``--viscosity``, ``--pressure-drop``; Lorenz & Persson, Eur.
-Phys. J. E 31 (2010) 159) and Barber's conductance (Proc. R. Soc. Lond. A 459 (2003) 53).
+Phys. J. E 31 (2010) 159) and Barber's conductance (Proc. R. Soc. Lond. A 459 (2003) 53); the PNG's gap panels
+show P(u) with its contact atom at four loads and the leak rate against the load, for the WM17 model.
 """
 
 from __future__ import annotations
@@ -20,6 +21,12 @@ import numpy as np
 from persson_fp.cli._io import _atomic_open, _count, _make_parent, _note_replaced, _save_figure
 from persson_fp.cli._problem import FUDGES
 
+_SERIES = "q/π × 2D PSD"
+
+GAP_MODEL = "WM17"
+"""The fudge model of the figure's gap panels (with YP08 the closer to boundary-element gap histograms,
+benchmarks/results/interface_vs_bem.md)."""
+
 MAX_LOADS = 100_000
 """Largest ``surface --n-loads`` (four models, each load a quadrature of ~400 nodes: ~5 s at the cap)."""
 
@@ -29,7 +36,7 @@ def add_parser(sub):
     s.add_argument("file", help="height map (.npy, or text: whitespace/comma separated) or contact.engineering CSV")
     s.add_argument("--size", type=float, nargs="+", default=None, help="physical size Lx [Ly] of a height map, length")
     s.add_argument("--periodic", action="store_true", help="the height map is periodic (no detrending, no window)")
-    s.add_argument("--series", default="q/π × 2D PSD", help="contact.engineering series (default 'q/π × 2D PSD')")
+    s.add_argument("--series", default=_SERIES, help=f"contact.engineering series (default {_SERIES!r})")
     s.add_argument("--H", type=float, default=None, help="1-D PSD series: Abel factor of this H (default: numerical)")
     s.add_argument("--E-star", type=float, default=1.0, help="plane-strain modulus E/(1-nu^2), pressure (default 1)")
     s.add_argument("--ratio-min", type=float, default=1e-3, help="smallest p_bar/sqrt(V) (default 1e-3)")
@@ -65,8 +72,18 @@ def _read(args):
         return read_contact_engineering_csv(path, series=args.series, H=args.H)
     if args.size is None:
         raise ValueError("--size Lx [Ly] (physical size of the height map) is required for a height map")
+    if args.H is not None or args.series != _SERIES:
+        print("note: --H and --series apply to contact.engineering CSV files only; ignored for a height map")
     size = args.size[0] if len(args.size) == 1 else args.size
-    return read_heightmap(path, size, periodic=args.periodic)
+    try:
+        return read_heightmap(path, size, periodic=args.periodic)
+    except (ArithmeticError, ValueError) as e:  # ArithmeticError: overflow, or numpy's FloatingPointError
+        if isinstance(e, ArithmeticError) or "floating-point range" in str(e) or str(e).startswith("C must be finite"):
+            raise ValueError(
+                f"--size {' '.join(f'{v:g}' for v in args.size)} with these heights gives a spectrum outside the "
+                f"floating-point range ({e}); rescale the length unit"
+            ) from None
+        raise
 
 
 def cmd_surface(args) -> int:
@@ -92,22 +109,35 @@ def cmd_surface(args) -> int:
     sV = float(np.sqrt(psd.V(E_star=E)))
     ratio = np.geomspace(args.ratio_min, args.ratio_max, args.n_loads)
     p_bar = ratio * sV
+    if not (np.all(np.isfinite(p_bar)) and np.all(p_bar > 0)):
+        raise ValueError(
+            f"--E-star {E:g} with this surface gives sqrt(V) = {sV:.3g} and loads outside the floating-point range "
+            "(p_bar = ratio x E* rms slope / 2); rescale the pressure unit (e.g. MPa)"
+        )
     t0 = time.perf_counter()
     if not (np.isfinite(args.viscosity) and args.viscosity > 0):
         raise ValueError("--viscosity must be a finite number > 0 (pressure x time)")
     if not (np.isfinite(args.pressure_drop) and args.pressure_drop > 0):
         raise ValueError("--pressure-drop must be a finite number > 0 (pressure)")
     A, u, K, law = {}, {}, {}, {}
-    gaps, Q_cj, Q_em, C = {}, {}, {}, {}
-    for name in FUDGES:
-        f = None if name == "none" else name
-        A[name] = np.atleast_1d(exact(ContactProblem(psd, E, p_bar, f)).contact_area)
-        ms = MeanSeparation(psd, E, f, args.weighting)
-        u[name] = ms.mean_separation(p_bar)
-        K[name] = ms.stiffness(p_bar)
-        law[name] = ms.small_load_law()
-        gaps[name], Q_cj[name], Q_em[name] = _interface(psd, E, p_bar, f, args)
-        C[name] = 2.0 * K[name] / E  # Barber: C (rho1 + rho2) = 2K/E*
+    gaps, Q_cj, Q_em, C, gd = {}, {}, {}, {}, {}
+    with warnings.catch_warnings(record=True) as caught:  # printed as one line each
+        warnings.simplefilter("always")
+        for name in FUDGES:
+            f = None if name == "none" else name
+            A[name] = np.atleast_1d(exact(ContactProblem(psd, E, p_bar, f)).contact_area)
+            ms = MeanSeparation(psd, E, f, args.weighting)
+            u[name] = ms.mean_separation(p_bar)
+            try:
+                K[name] = ms.stiffness(p_bar)
+            except ValueError as e:
+                raise ValueError(f"--ratio-max {args.ratio_max:g} reaches too far into full contact: {e}") from None
+            law[name] = ms.small_load_law()
+            gd[name], Q_cj[name], Q_em[name] = _interface(psd, E, p_bar, f, args)
+            gaps[name] = gd[name].mean
+            C[name] = 2.0 * K[name] / E  # Barber: C (rho1 + rho2) = 2K/E*
+    for w in {str(w.message): w for w in caught}.values():
+        print(f"warning: {w.message}")
     wall = time.perf_counter() - t0
     print(f"E* = {E:.6g}, V(zeta_max) = {sV**2:.6e}, sqrt(V) = {sV:.6e}; energy weighting {args.weighting!r}")
     print(f"{'model':<6} {'u0 [length]':>13} {'beta':>11}   small-load law p_bar = beta E* exp(-u/u0)")
@@ -143,29 +173,32 @@ def cmd_surface(args) -> int:
             vals += [K[n][j] for n in FUDGES]
             vals += [d[n][j] for d in (gaps, Q_cj, Q_em, C) for n in FUDGES]
             fh.write(",".join(f"{v:.12g}" for v in vals) + "\n")
-    _save_figure(_figure(psd, ratio, p_bar, A, u, K, surf.source), os.path.join(out, "surface.png"), dpi=110)
+    fig = _figure(psd, ratio, p_bar, A, u, K, surf.source, gd[GAP_MODEL], Q_cj[GAP_MODEL], Q_em[GAP_MODEL])
+    _save_figure(fig, os.path.join(out, "surface.png"), dpi=110)
     print(f"written {path} (metadata in surface.json) and surface.png")
     return 0
 
 
 def _interface(psd, E, p_bar, fudge, args):
-    """Mean gap, critical-junction and effective-medium leak rates (:mod:`persson_fp.results.interface`)."""
+    """Gap distribution, critical-junction and effective-medium leak rates (:mod:`persson_fp.results.interface`)."""
     from persson_fp.problems.contact import ContactProblem
     from persson_fp.results.interface import gap_distribution, leak_rate
 
     problem = ContactProblem(psd, E, p_bar, fudge)
     flow = dict(viscosity=args.viscosity, pressure_drop=args.pressure_drop)
     return (
-        gap_distribution(problem, weighting=args.weighting).mean,
+        gap_distribution(problem, weighting=args.weighting),
         leak_rate(problem, method="critical-junction", weighting=args.weighting, **flow),
         leak_rate(problem, method="effective-medium", weighting=args.weighting, **flow),
     )
 
 
-def _figure(psd, ratio, p_bar, A, u, K, title):
+def _figure(psd, ratio, p_bar, A, u, K, title, gaps, Q_cj, Q_em):
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(2, 2, figsize=(10, 7.5), layout="constrained")
+    from persson_fp.plotting import plot_gap_pdf, plot_leak_rate
+
+    fig, ax = plt.subplots(2, 3, figsize=(14, 7.5), layout="constrained")
     q = np.geomspace(psd.q_l, psd.q_s, 400)
     ax[0, 0].loglog(q, psd.C(q), "k-")
     ax[0, 0].loglog(psd.q, psd.values, "k.", ms=3)
@@ -183,6 +216,11 @@ def _figure(psd, ratio, p_bar, A, u, K, title):
         xlabel="mean separation u  [length]", ylabel=r"$\bar p$  [pressure]", title="load-separation (Persson 2007)"
     )
     ax[1, 1].set(xlabel=r"$\bar p$  [pressure]", ylabel="K = -dp/du  [pressure/length]", title="normal stiffness")
+    # what happens in the gaps, for one model: P(u) at four loads with the contact atom, and the leak rate
+    plot_gap_pdf(gaps, ax=ax[0, 2])
+    ax[0, 2].set_title(f"gap distribution P(u), {GAP_MODEL} (arrows: contact atom)", fontsize=9)
+    plot_leak_rate(p_bar, {"critical junction": Q_cj, "effective medium": Q_em}, ax=ax[1, 2])
+    ax[1, 2].set_title(f"leak rate of a square seal, {GAP_MODEL} (ticks: sealed)", fontsize=9)
     for a in ax.flat:
         a.grid(lw=0.3, which="both")
     ax[0, 1].legend(fontsize=8)

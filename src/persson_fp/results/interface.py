@@ -120,6 +120,8 @@ def gap_distribution(
     if solution is None:
         gd = GapDistribution(r, problem.p_bar, n_area=n_area, n_zeta=n_zeta, weight_cut=weight_cut)
     else:
+        if not hasattr(solution, "contact_area_all") or not hasattr(solution, "problem"):
+            raise ValueError(f"solution must be a numerical Solution of this problem, got {type(solution).__name__}")
         if getattr(solution, "problem", None) is not problem and not np.array_equal(
             solution.problem.p_bar, problem.p_bar
         ):
@@ -161,7 +163,8 @@ def leak_rate(
         Energy weighting of the separation.
     full_output : bool
         Return a dict with ``flow_rate``, ``effective_gap`` (length), ``sealed``, ``zeta_c`` (critical junction),
-        ``method`` and ``note`` instead of the flow rate alone.
+        ``effective_gap_error`` (effective medium: an upper estimate of the quadrature's relative error on the
+        effective gap; the flow rate's is three times it), ``method`` and ``note`` instead of the flow rate alone.
 
     Returns
     -------
@@ -177,11 +180,11 @@ def leak_rate(
     if method not in LEAK_METHODS:
         raise ValueError(f"method must be one of {list(LEAK_METHODS)}, got {method!r}")
     r = _resolved(problem, weighting)
-    zeta_c = None
+    zeta_c = gap_err = None
     if method == "critical-junction":
         gap, zeta_c = _leak.critical_junction_gap(r, problem.p_bar, A_c=A_c)
     else:
-        gap = _leak.effective_medium_gap(GapDistribution(r, problem.p_bar))
+        gap, gap_err = _leak.effective_medium_gap(GapDistribution(r, problem.p_bar), return_error=True)
     Q = _leak.flow_rate(gap, viscosity, pressure_drop, aspect)
     if not full_output:
         return _out(problem, Q)
@@ -190,6 +193,7 @@ def leak_rate(
         "effective_gap": _out(problem, gap),
         "sealed": gap <= 0 if not problem.scalar_load else bool(gap[0] <= 0),
         "zeta_c": None if zeta_c is None else _out(problem, zeta_c),
+        "effective_gap_error": None if gap_err is None else _out(problem, gap_err),
         "method": method,
         "note": "a mean-field estimate; near the percolation threshold (contact area ~0.4-0.5) only the order of "
         "magnitude is meaningful",
@@ -225,14 +229,10 @@ def contact_conductance(problem, resistivity=None, thermal_conductivity=None, we
     """
     _check(problem)
     ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
-    dU = ms.dU_dp(problem.p_bar)
-    if np.any(dU <= 0):
-        bad = float(problem.p_bar[np.argmax(dU <= 0)])
-        raise ValueError(
-            f"p_bar = {bad:.6g} is complete contact to double precision (p_bar/sqrt(V) = {bad / ms.sigma_max:.3g}): "
-            "the stiffness and the constriction conductance are unbounded there; use p_bar < ~10 sqrt(V(zeta_max))"
-        )
-    K = problem.p_bar / dU
+    try:
+        K = ms.stiffness(problem.p_bar)
+    except ValueError as e:
+        raise ValueError(f"{e}; the constriction conductance is unbounded there as well") from None
     return _out(problem, _leak.barber_conductance(K, problem.E_star, resistivity, thermal_conductivity))
 
 

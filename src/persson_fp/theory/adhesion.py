@@ -18,8 +18,12 @@ area and pull-off.  Two stickiness estimates from the spectrum are offered: Pers
 (2001) 5597) compare w, times the true-area ratio, with the elastic energy of full contact; Pastewka & Robbins
 (PNAS 111 (2014) 3298, their Eq. 10 with :math:`\kappa_{rep} = 2`) give the number
 :math:`\frac{h'_{rms}E^*\rho}{2w}\left(\frac{h'^2_{rms}}{h''_{rms}\rho}\right)^{2/3}`, sticky below 1.  Here
-:math:`h''_{rms}` is taken as the rms mean curvature :math:`\tfrac12\langle(\nabla^2 h)^2\rangle^{1/2}` (the
-convention of ContactEngineering's SurfaceTopography; reconstructed, not checked against the paper's text).
+:math:`h''_{rms}` is the rms mean curvature :math:`\tfrac12\langle(\nabla^2 h)^2\rangle^{1/2}`.  Checked against
+ContactEngineering: its Adhesion package's rough-contact example (``examples/adhesive_simulation_rough.py``, "P&R
+equation 10, with kappa_rep = 2") evaluates exactly this number with SurfaceTopography's ``rms_gradient`` and
+``rms_curvature_from_area``, and the latter is documented there as half the rms Laplacian; the Tabor-like parameter
+below is the same example's "generalized Tabor parameter following Martin Müser" (tests: the number from a height
+map's own rms gradient and half rms Laplacian, 1e-2).
 
 What was checked: :math:`p_{att}` against adaptive quadrature of :math:`\int P\sigma\,du` for every law (tests,
 1e-6), the closed-form folded-normal means, the pull-off against brute-force minimisation, the limit
@@ -57,6 +61,17 @@ __all__ = [
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(64)
 
 
+def _check_scale(w, rho, rho_name="rho"):
+    """The peak traction ~ w/rho must be a finite number (else the law is outside the floating-point range)."""
+    with np.errstate(over="ignore"):
+        peak = w / rho
+    if not np.isfinite(peak):
+        raise ValueError(
+            f"w / {rho_name} = {w!r} / {rho!r} (the peak attraction, pressure) leaves the floating-point range; "
+            "rescale the units"
+        )
+
+
 class Interaction:
     r"""An attractive traction law :math:`\sigma_{att}(u) \ge 0` (pressure) at gap u >= 0 (length).
 
@@ -89,7 +104,10 @@ class Interaction:
         hi = c + 9.0 * h
         near = lo <= 0.0
         x = 0.5 * (_GL_X + 1.0)[None, :]
-        L = np.log1p(hi / self.rho)
+        with np.errstate(over="ignore"):
+            L = np.log1p(hi / self.rho)
+        if not np.all(np.isfinite(L)):
+            raise ValueError(f"rho = {self.rho!r} is too small against the gaps (gap / rho overflows); rescale units")
         u_log = self.rho * np.expm1(L * x)
         du_log = L * (u_log + self.rho)
         u_lin = lo + (hi - lo) * x
@@ -119,17 +137,28 @@ class Exponential(Interaction):
     def __init__(self, w: float, rho: float):
         self.w = as_positive_scalar(w, "w")
         self.rho = as_positive_scalar(rho, "rho")
+        _check_scale(self.w, self.rho)
 
     def sigma(self, u):
         return self.w / self.rho * np.exp(-np.asarray(u, float) / self.rho)
 
     def folded_mean(self, c, h):
-        r"""Closed form: :math:`\frac{w}{\rho}\sum_\pm e^{\mp c/\rho + h^2/2\rho^2}\Phi(\pm c/h - h/\rho)`."""
-        c, h = np.asarray(c, float), np.asarray(h, float)
+        r"""Closed form: :math:`\frac{w}{\rho}\sum_\pm e^{\mp c/\rho + h^2/2\rho^2}\Phi(\pm c/h - h/\rho)`.
+
+        Where :math:`h/\rho > c/h` each term is written :math:`\tfrac12 e^{-c^2/2h^2}\mathrm{erfcx}((h/\rho \mp
+        c/h)/\sqrt2)` (the same number; no overflow of :math:`e^{h^2/2\rho^2}` when the range is short against the
+        widths, where the limit is :math:`w\,P(0)`).
+        """
+        c, h = np.broadcast_arrays(np.asarray(c, float), np.asarray(h, float))
         a = h / self.rho
-        with np.errstate(over="ignore", under="ignore"):
-            plus = np.exp(-c / self.rho + 0.5 * a * a + log_ndtr(c / h - a))
-            minus = np.exp(c / self.rho + 0.5 * a * a + log_ndtr(-c / h - a))
+        r = c / h
+        with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+            plus = np.exp(-c / self.rho + 0.5 * a * a + log_ndtr(r - a))
+            minus = np.exp(c / self.rho + 0.5 * a * a + log_ndtr(-r - a))
+            g = np.exp(-0.5 * r * r)
+            short = a > r  # erfcx form: both arguments >= 0
+            plus = np.where(short, 0.5 * g * erfcx((a - r) / np.sqrt(2.0)), plus)
+            minus = np.where(short, 0.5 * g * erfcx((a + r) / np.sqrt(2.0)), minus)
         return self.w / self.rho * (plus + minus)
 
 
@@ -149,7 +178,10 @@ class MaugisDugdale(Interaction):
     def __init__(self, w: float, sigma0: float):
         self.w = as_positive_scalar(w, "w")
         self.sigma0 = as_positive_scalar(sigma0, "sigma0")
-        self.rho = self.w / self.sigma0
+        with np.errstate(over="ignore"):
+            self.rho = self.w / self.sigma0
+        if not np.isfinite(self.rho):
+            raise ValueError(f"w / sigma0 = {w!r} / {sigma0!r} (the range, length) leaves the floating-point range")
 
     def sigma(self, u):
         u = np.asarray(u, float)
@@ -181,6 +213,7 @@ class LennardJones93(Interaction):
     def __init__(self, w: float, rho: float):
         self.w = as_positive_scalar(w, "w")
         self.rho = as_positive_scalar(rho, "rho")
+        _check_scale(self.w, self.rho)
 
     def sigma(self, u):
         x = self.rho / (np.asarray(u, float) + self.rho)
@@ -207,7 +240,10 @@ class CallableInteraction(Interaction):
             raise ValueError(f"interaction must be an Interaction or a callable sigma(u); got {fn!r}")
         self.fn = fn
         self.rho = as_positive_scalar(rho, "rho")
-        probe = np.asarray(fn(self.rho * np.geomspace(1e-6, 1e3, 64)), dtype=float)
+        try:
+            probe = np.asarray(fn(self.rho * np.geomspace(1e-6, 1e3, 64)), dtype=float)
+        except Exception as e:  # the user's function: any failure is a bad input
+            raise ValueError(f"the interaction callable failed on an array of gaps: {type(e).__name__}: {e}") from e
         if probe.shape != (64,) or not np.all(np.isfinite(probe)) or np.any(probe < 0):
             raise ValueError("the interaction callable must return finite values >= 0 for an array of gaps u >= 0")
         if w is None:
@@ -215,6 +251,7 @@ class CallableInteraction(Interaction):
 
             w = quad(lambda u: float(fn(np.array([u]))[0]), 0.0, np.inf, limit=200)[0]
         self.w = as_positive_scalar(w, "w")
+        _check_scale(self.w, self.rho)
         self.name = getattr(fn, "__name__", "user")
 
     def sigma(self, u):
@@ -296,7 +333,11 @@ def pastewka_robbins(psd, E_star, w, rho) -> dict:
     r"""Pastewka-Robbins stickiness number (PNAS 111 (2014) 3298, Eq. 10, :math:`\kappa_{rep} = 2`).
 
     :math:`\Pi = \frac{h'_{rms}E^*\rho}{2w}\left(\frac{h'^2_{rms}}{h''_{rms}\rho}\right)^{2/3}`: sticky for
-    :math:`\Pi < 1`.  Valid for short-range adhesion (:math:`\rho` small against the roughness).
+    :math:`\Pi < 1`, with :math:`h'_{rms} = \langle|\nabla h|^2\rangle^{1/2}` and :math:`h''_{rms} =
+    \tfrac12\langle(\nabla^2 h)^2\rangle^{1/2}` (as ContactEngineering evaluates it; module docstring).  Valid for
+    short-range adhesion: ``range_ratio`` :math:`= \rho/g_0`, :math:`g_0 = \tfrac{16}{3}h'^2_{rms}/h''_{rms}`
+    (Monti, Sanner & Pastewka, Tribol. Lett. (2021), doi:10.1007/s11249-021-01454-6), should be well below 1
+    (ContactEngineering's example asks for 0.1).
 
     Parameters
     ----------
@@ -312,14 +353,22 @@ def pastewka_robbins(psd, E_star, w, rho) -> dict:
     Returns
     -------
     dict
-        ``number`` (dimensionless), ``sticky`` (bool), ``rms_slope``, ``rms_curvature`` (1/length).
+        ``number`` (dimensionless), ``sticky`` (bool), ``rms_slope``, ``rms_curvature`` (1/length) and
+        ``range_ratio`` (:math:`\rho/g_0`, dimensionless).
     """
     E_star = as_positive_scalar(E_star, "E_star")
     w = as_positive_scalar(w, "w")
     rho = as_positive_scalar(rho, "rho")
     h1, h2 = _moments(psd)
     number = h1 * E_star * rho / (2.0 * w) * (h1 * h1 / (h2 * rho)) ** (2.0 / 3.0)
-    return {"number": number, "sticky": bool(number < 1.0), "rms_slope": h1, "rms_curvature": h2}
+    g0 = 16.0 / 3.0 * h1 * h1 / h2
+    return {
+        "number": number,
+        "sticky": bool(number < 1.0),
+        "rms_slope": h1,
+        "rms_curvature": h2,
+        "range_ratio": rho / g0,
+    }
 
 
 def tabor_parameter(psd, E_star, w, rho) -> float:

@@ -50,8 +50,8 @@ A_C_DEFAULT = 0.42
 
 def _check_A_c(A_c):
     A_c = as_positive_scalar(A_c, "A_c")
-    if not 0.0 < A_c < 1.0:
-        raise ValueError(f"A_c must lie in (0, 1), got {A_c!r}")
+    if not 1e-12 <= A_c <= 1.0 - 1e-12:
+        raise ValueError(f"A_c must lie in (0, 1) (at least 1e-12 from either end), got {A_c!r}")
     return A_c
 
 
@@ -89,70 +89,176 @@ def critical_junction_gap(resolved, p_bar, A_c: float = A_C_DEFAULT, dA: float =
     return u_c, z_c
 
 
-def effective_medium_gap(gaps) -> np.ndarray:
+def effective_medium_gap(gaps, return_error: bool = False):
     r"""Effective gap :math:`u_{eff} = (12\eta\sigma_e)^{1/3}` of 2-D Bruggeman theory on a gap distribution.
 
-    Integrating by parts, with :math:`f(u) = (u^3 - u_e^3)/(u^3 + u_e^3)` and the survival function
-    :math:`S(u) = 1 - \mathrm{cdf}(u)` of P (atom included), the Bruggeman condition is
+    With :math:`\sigma \propto u^3`, :math:`(\sigma - \sigma_e)/(\sigma + \sigma_e) = \tanh(\tfrac32(v - x))` in
+    :math:`v = \ln u`, :math:`x = \ln u_e`, so the Bruggeman condition (contact atom A, :math:`\sigma = 0`) is
 
-    .. math::  -1 + \int_{-\infty}^{\infty} \frac{6e^{3y}}{(1 + e^{3y})^2}\, S(u_e e^{y})\,dy = 0,
+    .. math::  F(x) = -A + \int_{-\infty}^{\infty} \rho(v)\,\tanh\big(\tfrac32(v - x)\big)\,dv = 0,
+               \qquad \rho(v) = u\,P(u)\big|_{u = e^v},
 
-    a logistic kernel in :math:`y = \ln(u/u_e)` against a smooth S (the integrand :math:`f` itself is a near-step
-    in u, which Gauss-Hermite rules on the folded normals do not integrate).  S is tabulated per load on 160
-    log-spaced gaps spanning 6 decades below the largest gap (S = 0 beyond) and interpolated linearly in ln u, the
-    kernel integrated by the trapezoidal rule (step 0.25 on [-12, 12]: below 1e-10), the root in :math:`\ln u_e`
-    found by bisection to 1e-13.  Measured: within 6e-4 relative of a 512-point, 8-decade table on the reference
-    surface.
+    the density of the continuous part in ln u against a smooth sigmoid (in u the integrand is a near-step, which
+    Gauss-Hermite rules on the folded normals do not integrate).  :math:`\rho` is evaluated once per load on nodes
+    uniform in v spanning 6 decades below the largest gap (9 where the contact fraction exceeds 0.3, deeper if the
+    root comes within 8 of the bottom; :math:`\rho = 0` above to double precision), the mass below the lowest node,
+    where the sigmoid is -1 to 2e-24, taken from the CDF, and the integral is the trapezoidal rule on those fixed
+    nodes for every x, with the Euler-Maclaurin correction at the bottom (:math:`\rho \propto e^v` there).  The rule
+    converges like :math:`e^{-c(\sigma/\Delta v)^2}` for a feature of width :math:`\sigma` in v; a folded normal
+    of centre c and width h is one of width ~h/c, so the step is chosen per load from the narrowest component
+    holding more than 1e-6 of the mass (``_spacing``), at most 0.2, and halved until three times the rule's error
+    on the known mass, divided by :math:`|dF/dx|`, is below 1e-6 relative.  F decreases in x; it is tabulated on
+    every few nodes (one matrix product) to bracket the root, which bracketed Newton steps find to
+    :math:`|F| < 10^{-13}`.  The error returned is an upper estimate: the larger of that and the shift of the root
+    under the same rule on every other node (step :math:`2\Delta v`).  Measured against scipy ``quad`` +
+    ``brentq`` on the Bruggeman integral in u (tests): within 4e-7 relative, on the theory's distributions and on
+    random mixtures with components down to h/c = 0.03, and never above the returned estimate.  The earlier
+    linear-interpolation table (6e-4) took 2.5x as long (1 000 loads, medians).
 
     Parameters
     ----------
     gaps : GapDistribution
         The gap distribution at each load.
+    return_error : bool
+        Also return the estimated relative error of :math:`u_{eff}` per load.
 
     Returns
     -------
     ndarray, length
         :math:`u_{eff}` per load; exactly 0 where the contact fraction is >= 1/2 (2-D effective-medium threshold).
+    ndarray, dimensionless
+        With ``return_error``: the trapezoidal rule's error on the (known) mass divided by :math:`|dF/dx|`, an
+        estimate of the relative error of :math:`u_{eff}` (0 where sealed).
     """
     c, h, w, atom = gaps.centres, gaps.widths, gaps.weights, gaps.atom
-    out = np.zeros(atom.size)
-    live = np.flatnonzero((atom < 0.5) & (np.sum(w, axis=1) > 0))
-    y = np.linspace(-12.0, 12.0, 97)
-    kern = 6.0 * np.exp(3.0 * y) / (1.0 + np.exp(3.0 * y)) ** 2 * (y[1] - y[0])
-    kern[[0, -1]] *= 0.5
-    for i in range(0, live.size, 32):
-        j = live[i : i + 32]
-        used = np.any(w[j] > 0, axis=0)  # components empty in every load of the chunk are skipped
-        cj, hj, wj = c[j][:, used], h[j][:, used], w[j][:, used]
-        # the table ends where S = 0 to double precision (the largest gap plus ten widths, and a margin of e^0.5)
-        v_hi = np.log(np.max(np.where(wj > 0, cj + 10.0 * hj, 0.0), axis=1)) + 0.5
-        v = v_hi[:, None] + np.linspace(-6.0 * np.log(10.0), 0.0, 160)[None, :]
-        u = np.exp(v)[:, :, None]
-        cdf = atom[j][:, None] + np.sum(
-            wj[:, None, :]
-            * (ndtr((u - cj[:, None, :]) / hj[:, None, :]) - ndtr((-u - cj[:, None, :]) / hj[:, None, :])),
-            axis=2,
+    out, err, coarse = np.zeros(atom.size), np.zeros(atom.size), np.zeros(atom.size)
+    todo = np.flatnonzero((atom < 0.5) & (np.sum(w, axis=1) > 0))
+    dv_all = _spacing(c, h, w)
+    depth = np.where(atom > 0.3, _DEPTH + 3.0 * np.log(10.0), _DEPTH)  # near the threshold u_e is small
+    while todo.size:
+        todo = todo[np.argsort(dv_all[todo], kind="stable")]  # loads of like spacing share a chunk
+        for i in range(0, todo.size, _CHUNK):
+            j = todo[i : i + _CHUNK]
+            used = np.any(w[j] > 0, axis=0)  # components empty in every load of the chunk are skipped
+            dv = float(np.min(dv_all[j]))
+            out[j], err[j], coarse[j], x = _bruggeman_chunk(
+                c[j][:, used], h[j][:, used], w[j][:, used], atom[j], dv, float(np.max(depth[j]))
+            )
+            dv_all[j] = dv
+            # a root within 8 of the table's bottom (u_e < ~1e-3 of the largest gap x 1e-3): deepen the table
+            shallow = (x > -np.max(depth[j]) + 8.0) | (depth[j] >= _DEPTH_MAX)
+            depth[j] = np.where(shallow, depth[j], np.minimum(-x + 9.0, _DEPTH_MAX))
+            err[j] = np.where(shallow, err[j], np.inf)
+        # halve the spacing where the estimate (x 3: it is within a factor 2 when resolved) exceeds the target
+        deeper = ~np.isfinite(err[todo])
+        redo = (_SAFETY * err[todo] > _TOL) & (dv_all[todo] > _DV_MIN) & ~deeper
+        dv_all[todo[redo]] *= 0.5
+        todo = todo[redo | deeper]
+    if not return_error:
+        return out
+    return out, np.where(out > 0, np.maximum(_SAFETY * err, np.nan_to_num(coarse, nan=np.inf)) + _FLOOR, 0.0)
+
+
+_CHUNK = 64
+_DV_MIN, _DV_MAX = 0.005, 0.2
+_DEPTH = 6.0 * np.log(10.0)  # the table spans 6 decades below the largest gap unless the root is deeper
+_DEPTH_MAX = 60.0 * np.log(10.0)  # a root deeper than 60 decades (contact fraction within ~1e-16 of 1/2) is left
+_TOL = 1e-6  # target relative error of u_e
+_SAFETY = 3.0
+_FLOOR = 1e-10  # the root (|F| < 1e-13) and the sigmoid's tails (2e-24) below the estimate's reach
+_SQ2PI = np.sqrt(2.0 * np.pi)
+
+
+def _spacing(c, h, w):
+    """Node spacing in ln u per load: the trapezoidal error of a component of mass w and relative width s = h/c
+    was measured as ~1e-2 w exp(-7.2 (s/dv)^2) (random mixtures against adaptive quadrature); each is kept
+    below 1e-8."""
+    felt = (w > 1e-6) & (h < c)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = np.where(felt, h / np.where(felt, c, 1.0) * np.sqrt(7.2 / np.log(1e6 * np.where(felt, w, 1.0))), np.inf)
+    return np.clip(np.min(s, axis=1), _DV_MIN, _DV_MAX)
+
+
+def _bruggeman_chunk(c, h, w, atom, dv, depth):
+    """Roots u_e of the Bruggeman condition for a chunk of loads sharing the node spacing dv (in ln u) and the
+    table depth (in ln u); also the error estimate and the root relative to the top of the table."""
+    # the table ends where rho = 0 to double precision (the largest gap plus ten widths, and a margin of e^0.5)
+    v_hi = np.log(np.max(np.where(w > 0, c + 10.0 * h, 0.0), axis=1)) + 0.5
+    n = int(np.ceil(depth / dv)) + 1
+    off = dv * np.arange(-(n - 1), 1)  # nodes relative to v_hi
+    u = np.exp(v_hi[:, None] + off[None, :])
+    cc, hh = c[:, None, :], h[:, None, :]
+    # the pair G(u - c) + G(u + c), in place (the array is loads x nodes x components); exponents clipped at -600
+    # (denormals are slow, and those terms negligible)
+    uu = u[:, :, None]
+    g = uu * (1.0 / hh) - cc / hh
+    g *= g
+    g *= -0.5
+    np.maximum(g, -600.0, out=g)
+    np.exp(g, out=g)
+    mirror = uu * (-2.0 * cc / hh**2)
+    np.maximum(mirror, -600.0, out=mirror)
+    np.exp(mirror, out=mirror)
+    mirror += 1.0
+    g *= mirror
+    rho = u * np.matmul(g, (w / (_SQ2PI * h))[:, :, None])[:, :, 0]
+    rb = rho[:, 0].copy()
+    rho[:, 0] *= 0.5  # trapezoidal end weight; rho vanishes at the top
+    # the bottom end: rho ~ P(0) e^v there (P is even in u), so the Euler-Maclaurin correction of the trapezoidal
+    # rule is (dv^2/12) g'(v_0) with g' = rho (s + 1.5 (1 - s^2)), s the sigmoid at v_0; below v_0 the sigmoid is
+    # -1 to 2e^-24 (the root is >= 8 above it) against the mass there, from the CDF
+    u0 = u[:, :1, None]
+    below = np.sum(w[:, None, :] * (ndtr((u0 - cc) / hh) - ndtr((-u0 - cc) / hh)), axis=2)[:, 0]
+    base = -atom - below
+    em = dv * dv / 12.0 * rb
+
+    def F(x):  # x relative to v_hi, shape (loads,)
+        sb = np.tanh(1.5 * (off[0] - x))
+        return (
+            base
+            + em * (sb + 1.5 * (1.0 - sb * sb))
+            + dv * np.sum(rho * np.tanh(1.5 * (off[None, :] - x[:, None])), axis=1)
         )
-        S = np.clip(1.0 - cdf, 0.0, 1.0)
-        dv = v[:, 1] - v[:, 0]
 
-        def F(x, v=v, S=S, dv=dv):
-            pos = (x[:, None] + y[None, :] - v[:, :1]) / dv[:, None]
-            k = np.clip(pos, 0.0, S.shape[1] - 1.000001)
-            i0 = k.astype(np.intp)
-            fr = k - i0
-            rows = np.arange(S.shape[0])[:, None]
-            Sy = S[rows, i0] * (1.0 - fr) + S[rows, i0 + 1] * fr  # S is flat below the table (no mass there)
-            return -1.0 + Sy @ kern
+    def dF(x):
+        t = np.tanh(1.5 * (off[None, :] - x[:, None]))
+        sb = t[:, 0]
+        return -1.5 * dv * np.sum(rho * (1.0 - t * t), axis=1) - 1.5 * (1.0 - sb * sb) * (1.0 - 3.0 * sb) * em
 
-        lo, hi = v[:, 0] - 14.0, v_hi + 14.0
-        for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            f = F(mid)
-            lo = np.where(f > 0, mid, lo)
-            hi = np.where(f > 0, hi, mid)
-        out[j] = np.exp(0.5 * (lo + hi))
-    return out
+    # F on every few nodes (spacing ~0.4): one matrix product brackets the root in a cell
+    k = max(1, int(round(0.4 / dv)))
+    xs = off[::k]
+    sb = np.tanh(1.5 * (off[0] - xs))[None, :]
+    Fg = base[:, None] + em[:, None] * (sb + 1.5 * (1.0 - sb * sb)) + rho @ (dv * np.tanh(1.5 * (off[:, None] - xs)))
+    rows = np.arange(rho.shape[0])
+    pos = Fg > 0
+    m = np.clip(np.where(pos[:, 0], np.argmin(pos, axis=1) - 1, 0), 0, xs.size - 2)  # last with F > 0
+    lo, hi = xs[m], xs[m + 1]
+    f_lo, f_hi = Fg[rows, m], Fg[rows, m + 1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x = np.where(f_lo > f_hi, lo + (hi - lo) * f_lo / (f_lo - f_hi), lo)
+    for _ in range(12):
+        f = F(x)
+        if np.all(np.abs(f) < 1e-13):
+            break
+        lo = np.where(f > 0, x, lo)
+        hi = np.where(f > 0, hi, x)
+        with np.errstate(divide="ignore", invalid="ignore"):  # dF = 0 (rho underflowed): bisect instead
+            x_new = x - f / dF(x)
+        x = np.where((x_new > lo) & (x_new < hi) & np.isfinite(x_new), x_new, 0.5 * (lo + hi))
+    # the trapezoidal rule's error on the mass (known: 1) measures its error on F; in x it is divided by dF/dx
+    d = np.abs(dF(x))
+    mass_err = np.abs(dv * np.sum(rho, axis=1) + em - base - 1.0)
+    # the same rule on every other node (step 2 dv): its root differs from x by more than x's own error
+    x2, r2, t2 = x.copy(), rho[:, ::2], np.tanh(1.5 * (off[0] - x))
+    for _ in range(4):
+        t = np.tanh(1.5 * (off[::2][None, :] - x2[:, None]))
+        t2 = t[:, 0]
+        f2 = base + 4.0 * em * (t2 + 1.5 * (1.0 - t2 * t2)) + 2.0 * dv * np.sum(r2 * t, axis=1)
+        with np.errstate(divide="ignore", invalid="ignore"):  # a coarse rule with no slope: its shift is inf
+            x2 = x2 + f2 / (3.0 * dv * np.sum(r2 * (1.0 - t * t), axis=1))
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return np.exp(v_hi + x), np.minimum(mass_err / d, np.inf), np.abs(np.expm1(x2 - x)), x
 
 
 def flow_rate(gap, viscosity, pressure_drop, aspect=1.0) -> np.ndarray:
@@ -173,6 +279,12 @@ def flow_rate(gap, viscosity, pressure_drop, aspect=1.0) -> np.ndarray:
     -------
     ndarray, length^3 / time
         Q, of the shape of ``gap``.
+
+    Raises
+    ------
+    ValueError
+        A value out of range, or a Q that overflows or, for an open gap, underflows the floating-point range
+        (it would read as a sealed seal).
     """
     eta = as_positive_scalar(viscosity, "viscosity")
     dp = as_positive_scalar(pressure_drop, "pressure_drop")
@@ -180,11 +292,24 @@ def flow_rate(gap, viscosity, pressure_drop, aspect=1.0) -> np.ndarray:
     u = as_float_array(gap, "gap")
     if np.any(u < 0):
         raise ValueError("gap must be >= 0 (length)")
-    return aspect * u**3 * dp / (12.0 * eta)
+    with np.errstate(over="ignore", under="ignore"):
+        Q = aspect * u**3 * dp / (12.0 * eta)
+    bad = ~np.isfinite(Q) | ((u > 0) & (Q < np.finfo(float).tiny))
+    if np.any(bad):
+        raise ValueError(
+            f"the flow rate u^3 dp/(12 eta) leaves the floating-point range (gap {float(u[bad].flat[0]):.3g}, "
+            f"viscosity {eta!r}, pressure_drop {dp!r}, aspect {aspect!r}): rescale the units (e.g. mm, MPa, Pa s)"
+        )
+    return Q
 
 
 def _pair(value, name):
-    v = as_float_array(value, name)
+    try:
+        v = as_float_array(value, name)
+    except ValueError as e:
+        if name in str(e):
+            raise
+        raise ValueError(f"{name} must be a pair of finite values > 0 (one per body), got {value!r}") from None
     if v.shape != (2,) or not np.all(np.isfinite(v)) or np.any(v <= 0):
         raise ValueError(f"{name} must be a pair of finite values > 0 (one per body), got {value!r}")
     return v

@@ -241,18 +241,24 @@ class MeanSeparation:
         Raises
         ------
         ValueError
-            A load so far into full contact that K exceeds the floating-point range (about 25 sqrt(V) and above).
+            A load so far into full contact that K exceeds the floating-point range (about 25 sqrt(V) and above
+            for E* of order 1, lower for huge E*): the limit there is K = infinity, which is refused rather than
+            returned.
         """
         p = self._loads(p_bar)
         d = self.dU_dp(p)
-        if np.any(d <= 0):
-            worst = float(np.max(np.asarray(p)[np.asarray(d) <= 0]))
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            K = p / np.where(d > 0, d, 1.0)
+        bad = (np.asarray(d) <= 0) | ~np.isfinite(K)  # dU/dp underflowed, or p / (dU/dp) overflows (large E*)
+        if np.any(bad):
+            worst = float(np.min(np.asarray(p)[bad]))
             raise ValueError(
-                f"p_bar = {worst!r} is full contact (p_bar / sqrt(V(zeta_max)) = {worst / self.sigma_max:.3g}): dU/dp "
-                "underflows and the stiffness, which grows like exp(p_bar^2 / 2V), exceeds the floating-point range; "
-                f"loads up to about 25 sqrt(V) = {25 * self.sigma_max:.3g} are resolved"
+                f"p_bar = {worst!r} is full contact (p_bar / sqrt(V(zeta_max)) = {worst / self.sigma_max:.3g}): the "
+                "stiffness grows without bound there (like exp(p_bar^2 / 2V)) and exceeds the floating-point range "
+                f"(dU/dp = {float(np.min(np.asarray(d)[bad])):.3g}); with E* of order 1 loads up to about 25 sqrt(V) = "
+                f"{25 * self.sigma_max:.3g} are resolved"
             )
-        return p / d
+        return K
 
     def contact_area(self, p_bar) -> np.ndarray:
         r"""The contact area the weighting uses at the top magnification.
