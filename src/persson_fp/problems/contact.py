@@ -107,6 +107,7 @@ class ContactProblem:
                 "range (V = E_star^2 <|grad h|^2> / 4, eq:VV_relation); rescale the pressure or length unit"
             )
         self._tau_max = None  # (n_loads,), on first use
+        self._p_max = None  # (k, p_max) of the last k asked, on first use
         _warn_unit_slip(self.p_bar, self.E_star, self._V_max)
         self._frozen = True
 
@@ -184,7 +185,7 @@ class ContactProblem:
         pb = _check_loads(p_bar)
         if self.hardness is not None:
             self.hardness.check(self.psd.zeta_max, float(np.max(pb)))
-        state = dict(self.__dict__, scalar_load=pb.ndim == 0, _strip_ev=None, _tau_max=None)
+        state = dict(self.__dict__, scalar_load=pb.ndim == 0, _strip_ev=None, _tau_max=None, _p_max=None)
         state["p_bar"] = np.atleast_1d(pb).astype(float)
         new = object.__new__(type(self))
         new.__setstate__(state)  # freezes p_bar
@@ -480,7 +481,13 @@ class ContactProblem:
         ValueError
             ``k`` not a finite number > 0.
         """
+        cache = self.__dict__.get("_p_max")
+        if cache is not None and cache[0] == k and type(k) is float:  # the last k asked (solvers ask one k)
+            return cache[1]
         k = as_positive_scalar(k, "k")
         if self.hardness is not None and self.hardness.is_constant:
-            return float(self.hardness.sigma(1.0))  # the strip: the yield wall is the domain's end
-        return float(np.max(self.p_bar + k * np.sqrt(self.tau_max)))
+            value = float(self.hardness.sigma(1.0))  # the strip: the yield wall is the domain's end
+        else:
+            value = float(np.max(self.p_bar + k * np.sqrt(self.tau_max)))
+        object.__setattr__(self, "_p_max", (k, value))  # (a cache of an immutable value; with_loads drops it)
+        return value
