@@ -163,3 +163,36 @@ def test_march_option_and_refusals():
         pf.solve(REF, method="chebyshev", march="rk4")
     sol = pf.solve(REF, method="chebyshev", tol=1e-6, march="magnus")  # constant operator: one step suffices
     assert sol.info["path"] == "magnus" and float(np.max(sol.compare().L1)) <= 1e-6
+
+
+def _zeta_dependent():
+    def B2(p, z):
+        return PSD.dV_dzeta(z) * (1.0 + p / PB * 0.2 * math.log(z))
+
+    return pf.FokkerPlanckProblem(PSD, p_bar=PB, B2=B2)
+
+
+def _general_strip():
+    def B2(p, z):
+        return np.full(np.shape(p), 1.5 * float(PSD.dV_dzeta(z)) * (1.0 + 0.5 * float(PSD.V(z)) / VMAX))
+
+    return pf.FokkerPlanckProblem(PSD, p_bar=PB, B2=B2, B1=lambda p, z: -0.3 / PB * B2(p, z), hardness=3.0 * PB)
+
+
+@pytest.mark.parametrize(
+    "make, path",
+    [(_zeta_dependent, "magnus"), (_general_strip, "clock"), (lambda: _clock_problem(1, 0.5, 0, PB), "clock")],
+)
+def test_auto_routes_the_new_classes_to_chebyshev(make, path):
+    sol = pf.solve(make(), method="auto", tol=1e-6)
+    a = sol.info["auto"]
+    assert a["method"] == "chebyshev" and sol.info["path"] == path and path in a["why"]
+    est = sol.error_estimate
+    assert max(float(np.max(est[q])) for q in ("L1", "contact_area")) <= 1e-6
+
+
+def test_auto_falls_through_to_fv_where_chebyshev_declines():
+    # a moving wall is not chebyshev's: the front-fixed engine
+    pr = pf.FokkerPlanckProblem(PSD, p_bar=PB, hardness=pf.hardness.PowerLaw(3.0 * PB, 0.2))
+    sol = pf.solve(pr, method="auto", tol=1e-3)
+    assert sol.info["auto"]["method"] == "fv"
