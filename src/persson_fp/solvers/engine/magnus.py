@@ -21,7 +21,8 @@ commute, the collocated parabolic problem shows the order reduction of exponenti
 (measured local order 2.3-2.5 on B2 = (1 + p zeta) dV/dzeta), so the local estimate only places the steps.  The
 *reported* estimate is global: a companion solution is marched through the same steps with the single step h, and
 :math:`|y_{h/2} - y_h|` at the end bounds the error of the kept half-step march for any global order >= 1 (the
-factor is 1 / (2^q - 1)), the damping of early errors by the later evolution included.
+factor is 1 / (2^q - 1)), the damping of early errors by the later evolution included; it is reported doubled, for
+marches of a few steps outside the asymptotic range (1.4x under it measured on a 6-step march otherwise).
 """
 
 from __future__ import annotations
@@ -69,12 +70,12 @@ def magnus_march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: floa
         accepted whatever its size, and one whose error does not fall at least 2x on a smaller try is taken as
         round-off if it is below 100 x floor.
     h0 : float or None
-        First trial step; default (V_b - V_a) / 8.
+        First trial step; default min((V_b - V_a) / 8, 2 V_a) (a narrow start changes on the scale V_a).
 
     Returns
     -------
     (ndarray, ndarray, dict)
-        y(V_b) (n_loads, m); the estimate of its error (n_loads,), |half-step march - companion march|; and the
+        y(V_b) (n_loads, m); the estimate of its error (n_loads,), 2 |half-step march - companion march|; and the
         march's statistics ``{"steps", "rejected", "expm"}``.
 
     Raises
@@ -86,7 +87,7 @@ def magnus_march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: floa
     log_span = math.log(V_b / V_a) if V_a > 0 else 0.0
     V, y = float(V_a), np.array(y0, dtype=float)
     z = y.copy()  # the companion: the same steps, each taken once
-    h = min(span, h0 if h0 is not None else span / 8.0)
+    h = min(span, h0 if h0 is not None else min(span / 8.0, 2.0 * V_a if V_a > 0 else span))
     steps = rejected = 0
     last_reject = math.inf  # the error of the last rejected try from this V (a round-off test)
     noise_level = floor  # the local error no step size lowers (learnt: the exponential's round-off)
@@ -114,5 +115,5 @@ def magnus_march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: floa
             rejected += 1
             last_reject = worst
             h *= float(np.clip(0.9 * (target / worst) ** 0.25, 0.05, 0.5))
-    est = norm(y - z)
+    est = 2.0 * norm(y - z)  # (1 / (2^q - 1) <= 1 for q >= 1, asymptotically; 2x for a march of few steps)
     return y, est, {"steps": steps, "rejected": rejected, "expm": 6 * (steps + rejected) + 2 * max(steps - 1, 0)}
