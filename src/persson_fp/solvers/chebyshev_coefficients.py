@@ -11,7 +11,7 @@ exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver 
 steps (:mod:`persson_fp.solvers.engine.magnus`).  The form is detected by sampling b and c on 33 pressures at 9
 magnifications (relative tolerance 1e-9).  A third form is exact too: b = s(V) b(p, V_max), c = s(V) c(p, V_max) (a
 zeta-dependent factor common to both, e.g. B2 = b(p) g(zeta) with any g): in the clock tau = int s dV it is the
-separable form, and one exponential over the clock's increment (:meth:`Coefficients.tau`) propagates it.
+separable form, and one exponential over the clock's increment (``Coefficients.tau``) propagates it.
 """
 
 from __future__ import annotations
@@ -85,26 +85,36 @@ class Coefficients:
     def tau(self, V_a: float, V_b: float) -> float:
         """The clock int_{V_a}^{V_b} s dV (pressure^2) of the clock form, s = b(p, V) / b(p, V_max).
 
-        Adaptive Gauss--Kronrod quadrature in zeta (``scipy.integrate.quad``, relative 1e-13) of
-        B2(p*, zeta) / b(p*, V_max) at the pressure p* of the largest b, split at the spectrum's roll-off (a kink
-        of dV/dzeta that quad alone misjudges: 6e-9 relative measured)."""
+        tau(0, V_b) - tau(0, V_a), each by adaptive Gauss--Kronrod quadrature in zeta (``scipy.integrate.quad``,
+        relative 1e-13; cached per V) of B2(p*, zeta) / b(p*, V_max) at the pressure p* of the largest b, split at
+        the spectrum's roll-off (a kink of dV/dzeta that quad alone misjudges: 6e-9 relative measured)."""
+        return self._tau0(V_b) - self._tau0(V_a)
+
+    def _tau0(self, V: float) -> float:
         from scipy.integrate import quad
 
-        key = (float(V_a), float(V_b))
-        if key in self._tau_cache:
-            return self._tau_cache[key]
-        pr = self.problem
-        za, zb = self.zeta_of(V_a), self.zeta_of(V_b)
-        p_star = np.array([self._p_star])
-        b_ref = float(self._per_V(p_star, self.z_ref)[1][0])
-
-        def f(z):
-            return float(self._per_V(p_star, z)[1][0]) * float(pr.dV_dzeta(z)) / b_ref
-
-        zr = getattr(pr.psd, "zeta_r", None)
-        pts = [zr] if zr is not None and za < zr < zb else None
-        self._tau_cache[key] = out = float(quad(f, za, zb, epsabs=0.0, epsrel=1e-13, limit=500, points=pts)[0])
-        return out
+        V = float(V)
+        if V <= 0.0:
+            return 0.0
+        if V not in self._tau_cache:
+            pr = self.problem
+            p_star = np.array([self._p_star])
+            b_ref = float(self._per_V(p_star, self.z_ref)[1][0])
+            zb = self.zeta_of(V)
+            zr = getattr(pr.psd, "zeta_r", None)
+            pts = [zr] if zr is not None and 1.0 < zr < zb else None
+            self._tau_cache[V] = float(
+                quad(
+                    lambda z: float(pr.coefficients(p_star, z)[1][0]) / b_ref,
+                    1.0,
+                    zb,
+                    epsabs=0.0,
+                    epsrel=1e-13,
+                    limit=500,
+                    points=pts,
+                )[0]
+            )
+        return self._tau_cache[V]
 
     def zeta_of(self, V: float) -> float:
         """The magnification where the variance is V."""
