@@ -38,8 +38,12 @@ V_MAX = float(PSD.V(PSD.zeta_max))
 
 
 def _normal_cdf_avg(edges, centre, var):
-    """Cell averages x width of the normal density N(centre, var) on cells ``edges``."""
-    return np.diff(ndtr((edges - centre) / np.sqrt(var)))
+    """Cell averages x width of the normal density N(centre, var) on cells ``edges``.
+
+    Right of the centre from the upper tail (a difference of values near 1 loses the small mass: with an image
+    weight e^{mu (c - p_bar)} ~ 5e3 that measured as a 3e-10 L1 error of the reference)."""
+    z = (edges - centre) / np.sqrt(var)
+    return np.where(z[:-1] >= 0.0, -np.diff(ndtr(-z)), np.diff(ndtr(z)))
 
 
 def _kinks(z):
