@@ -37,6 +37,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.special import ndtr
 
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
 from persson_fp.solvers.chebyshev_coefficients import Coefficients
@@ -48,6 +49,7 @@ __all__ = ["ChebyshevSolver"]
 N_MAX = 400
 """Largest polynomial degree the adaptive loop reaches (a dense 400 x 400 exponential: ~50 ms)."""
 TIME_SHARE = 1.0
+_GL96 = np.polynomial.legendre.leggauss(96)
 """The Magnus march's first tolerance, as a share of ``tol`` (lowered 4x when the march dominates the estimate)."""
 
 
@@ -141,7 +143,8 @@ class ChebyshevSolver(Solver):
         cf, pb = self._cf, self.problem.p_bar.astype(float)
         grids, out = [], None
         shape = (self.V_out.size, pb.size)
-        far, balance, t_err = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+        far, balance, t_err, law = np.zeros(shape), np.zeros(shape), np.zeros(shape), np.zeros(shape)
+        unresolved = np.zeros(shape)
         stats = {"steps": 0, "rejected": 0, "expm": 0}
         floor = 4.0 * np.finfo(float).eps * n * n
         path = self.path
@@ -159,23 +162,41 @@ class ChebyshevSolver(Solver):
             P = co.start_density(lambda q, Vs=V_start: cf.at(q, Vs), grid.p, pb, t0, p_wall=wall)
             P[:, 0] = P[:, -1] = 0.0
             mass0 = np.sum(P * grid.w, axis=-1)
+            load0 = np.sum(P * grid.w * grid.p, axis=-1)
+            # does the grid resolve the start?  Its quadrature against 96-point Gauss--Legendre over +-12 widths
+            lo = np.maximum(pb - 12.0 * np.sqrt(b_at * t0), 0.0)
+            hi = np.minimum(pb + 12.0 * np.sqrt(b_at * t0), p_max[k])
+            q = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * _GL96[0]
+            Pq = co.start_density(lambda x, Vs=V_start: cf.at(x, Vs), q, pb, t0, p_wall=wall)
+            mass_ref = 0.5 * (hi - lo) * (Pq @ _GL96[1])
+            unresolved[k] = np.abs(mass0 - mass_ref)
+            # and is the start itself sound?  Its mass against the drift-free images' (exact for constant b, c = 0)
+            s0 = np.sqrt(b_at * t0)
+            m_img = ndtr(pb / s0) - ndtr(-pb / s0) - (0.0 if wall is None else ndtr(-(wall - pb) / s0))
+            if not np.all(np.abs(mass_ref - m_img) <= 0.05):
+                raise ValueError(
+                    "method 'chebyshev': the small-time start at V0 is not valid here (its mass "
+                    f"{float(np.min(mass_ref)):.3g} where about {float(np.min(m_img)):.3g} is due: the drift per unit "
+                    "V is too strong across the start's width, or overflows); use method='fv' or 'mol'"
+                )
             if path != "magnus":
                 b_n, c_n = cf.at(grid.p)
                 L = co.generator(grid, b_n, c_n)
                 span = float(V) - V0 if path == "exponential" else cf.tau(V0, float(V))
                 P[:, 1:-1], I = co.propagate_with_integral(L, P[:, 1:-1], span)
                 out0, out_far = co.wall_losses(grid, b_n, c_n, I)
+                moment = 0.0 if c_n is None else np.sum((grid.w * c_n)[:, 1:-1] * I, axis=-1)
             else:
                 m = n - 1
 
                 def A_of(Vq, grid=grid):
                     b_n, c_n = cf.at(grid.p, Vq)
-                    return co.with_wall_rows(grid, co.generator(grid, b_n, c_n), b_n)
+                    return co.with_wall_rows(grid, co.generator(grid, b_n, c_n), b_n, c_n)
 
                 def norm(d, w=grid.w[:, 1:-1], m=m):
                     return np.sum(np.abs(d[:, :m]) * w, axis=-1) + np.abs(d[:, m]) + np.abs(d[:, m + 1])
 
-                y0 = np.concatenate([P[:, 1:-1], np.zeros((pb.size, 2))], axis=1)
+                y0 = np.concatenate([P[:, 1:-1], np.zeros((pb.size, 3))], axis=1)
                 try:
                     y, t_err[k], st = magnus_march(A_of, y0, V0, float(V), tol_t, norm, floor)
                 except RuntimeError as err:
@@ -184,14 +205,17 @@ class ChebyshevSolver(Solver):
                     raise SolverError(f"chebyshev: {err}; loosen tol or use method='fv'") from None
                 for key in stats:
                     stats[key] += st[key]
-                P[:, 1:-1], out0, out_far = y[:, :m], y[:, m], y[:, m + 1]
+                P[:, 1:-1], out0, out_far, moment = y[:, :m], y[:, m], y[:, m + 1], y[:, m + 2]
             far[k] = np.maximum(out_far, 0.0)
+            # the first-moment law: the load the solution must carry (with a hardness: elastic + sigma_Y A_pl)
+            law[k] = load0 + moment - (0.0 if self._sigma is not None else p_max[k] * out_far)
             balance[k] = mass0 - np.sum(P * grid.w, axis=-1) - out0 - out_far  # what left = what crossed a wall
             if out is None:
                 out = np.zeros((self.V_out.size,) + P.shape)
             out[k] = P
             grids.append(grid)
-        self._far, self._balance, self._time_err, self._stats = far, balance, t_err, stats
+        self._far, self._balance, self._time_err, self._stats, self._law = far, balance, t_err, stats, law
+        self._unresolved = unresolved
         return grids, out
 
     def _stats_of(self, grids, P, far):
@@ -213,13 +237,16 @@ class ChebyshevSolver(Solver):
     def _three_runs(self, n, frac, p_max, tol_t):
         """The run and its two partners (3/4 degree, start at 4 V0); ``_stats`` of the run, ``_all`` of the three."""
         main = (*self._run(n, frac, p_max, tol_t), self._far)
-        far, balance, t_err, stats = self._far, self._balance, self._time_err, self._stats
+        far, balance, t_err, stats, law = self._far, self._balance, self._time_err, self._stats, self._law
+        unresolved = self._unresolved
         all_stats = dict(stats)
         grid_part = (*self._run(max(8, int(round(0.75 * n))), frac, p_max, tol_t), self._far)
         all_stats = {key: all_stats[key] + self._stats[key] for key in all_stats}
         start_part = (*self._run(n, 4.0 * frac, p_max, tol_t), self._far)
         self._all = {key: all_stats[key] + self._stats[key] for key in all_stats}
-        self._far, self._balance, self._time_err, self._stats = far, balance, t_err, stats
+        self._law_spread = np.abs(law - self._law)
+        self._far, self._balance, self._time_err, self._stats, self._law = far, balance, t_err, stats, law
+        self._unresolved = unresolved
         return main, grid_part, start_part
 
     def _solve(self) -> SolverOutput:
@@ -243,7 +270,8 @@ class ChebyshevSolver(Solver):
             A, F, A_pl = self._stats_of(*main)
             far_err = np.zeros_like(far) if hard else 2.0 * far
             floor = 4.0 * np.finfo(float).eps * n * n  # round-off of the dense exponential
-            common = far_err + floor + t_err
+            common = far_err + floor + t_err + self._unresolved  # (the start's quadrature error: an L1 contraction
+            # carries it to every station; partners that all miss a spike agree with each other)
             est = {
                 "L1": L1_g + L1_s / 4.0 + common,
                 "contact_area": dA_g + dA_s / 4.0 + common,
@@ -263,6 +291,7 @@ class ChebyshevSolver(Solver):
             grid_worst = max(float(np.max(v)) for v in (L1_g, dA_g, dP_g, dN_g))
             start_worst = max(float(np.max(v)) for v in (L1_s, dA_s, dP_s, dN_s)) / 4.0
             time_worst = float(np.max(t_err))
+            grid_worst = max(grid_worst, float(np.max(self._unresolved)))  # more nodes resolve the start
             if time_worst > max(grid_worst, start_worst) and tol_t > 1e-3 * tol:
                 tol_t /= 4.0
             elif start_worst > grid_worst and frac > 1e-6:
@@ -295,11 +324,16 @@ class ChebyshevSolver(Solver):
                 "plastic_area": est["plastic_area"],
                 "noncontact_area": est["noncontact_area"],
                 "load": est["load"],
-                "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + 2 x far-wall mass + 4 eps n^2"
+                "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + 2 x far-wall mass + 4 eps n^2 "
+                "+ the start's quadrature error on the grid"
                 + (" + |march - companion march at double steps|" if self.path == "magnus" else ""),
                 "parts": {"time": t_err},
             },
             "far_wall_mass": np.zeros_like(far) if hard else far,
+            # d/dV int p P dp = int c P dp - p_max J(p_max), integrated alongside (checked by the invariants): the
+            # catch for a result whose partners agree on something wrong (e.g. a PDF the grid cannot follow)
+            "load_law": self._law,
+            "load_law_tolerance": est["load"] * pr.p_bar + self._law_spread,
             "mass_balance_residual": float(np.max(np.abs(balance))),
         }
         if self.path == "magnus":

@@ -165,12 +165,13 @@ def generator(grid: ChebGrid, b, c):
     return M[:, 1:-1, 1:-1]
 
 
-def with_wall_rows(grid: ChebGrid, L, b):
-    """The operator augmented by the mass out through each wall: shape (n_loads, n + 1, n + 1).
+def with_wall_rows(grid: ChebGrid, L, b, c=None):
+    """The operator augmented by the mass out through each wall and the drift moment: shape (n_loads, n + 2, n + 2).
 
-    The state [P at the interior nodes, mass out at p = 0, mass out at p_max] obeys d/dV of it = this matrix
-    times it: the two last rows are the wall fluxes 1/2 d(bP)/dp at p = 0 and -1/2 d(bP)/dp at p_max (P = 0 on
-    the walls, so the drift carries nothing through them; :func:`wall_losses`).
+    The state [P at the interior nodes, mass out at p = 0, mass out at p_max, int int c P dp dV] obeys d/dV of it
+    = this matrix times it: the next two rows are the wall fluxes 1/2 d(bP)/dp at p = 0 and -1/2 d(bP)/dp at p_max
+    (P = 0 on the walls, so the drift carries nothing through them; :func:`wall_losses`), the last the drift's
+    moment int c P dp (Clenshaw--Curtis) of the first-moment law d/dV int p P dp = int c P dp - p_max J(p_max).
 
     Parameters
     ----------
@@ -179,13 +180,17 @@ def with_wall_rows(grid: ChebGrid, L, b):
         The operator (:func:`generator`).
     b : ndarray, shape (n_loads, n + 1)
         Diffusion per unit V at the nodes.
+    c : ndarray or None, shape (n_loads, n + 1)
+        Drift per unit V at the nodes (None: 0).
     """
     nl, m, _ = L.shape
-    M = np.zeros((nl, m + 2, m + 2))
+    M = np.zeros((nl, m + 3, m + 3))
     M[:, :m, :m] = L
     rows = 0.5 * grid.D1[:, [0, -1], 1:-1] * b[:, None, 1:-1]
     M[:, m, :m] = rows[:, 0]
     M[:, m + 1, :m] = -rows[:, 1]
+    if c is not None:
+        M[:, m + 2, :m] = (grid.w * c)[:, 1:-1]
     return M
 
 
