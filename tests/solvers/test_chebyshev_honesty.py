@@ -12,7 +12,7 @@ integrated over 3000 uniform cells by 4-point Gauss--Legendre, against the refer
 lower bound of int |P0 - P_ref| dp that is within a few per cent of it when the cells are much finer than the
 error's oscillation (degree <= 400: at most ~400 sign changes).  Every result must be at most 2x over its own
 estimate, and a tol= result within tol.  ``benchmarks/honesty.py --method chebyshev`` runs 320 of them
-(results/honesty_chebyshev.md); the test a small sample.
+(results/honesty_chebyshev.csv and a section of results/honesty.md); the test a small sample.
 """
 
 from __future__ import annotations
