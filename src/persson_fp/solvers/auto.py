@@ -7,8 +7,10 @@ r"""``method="auto"`` and ``tol=``: ask for an accuracy, not a method.
   / strip series summed to ``tol`` -- the fastest method at every tolerance in ``benchmarks/results/
   speed_accuracy.md`` and ``plasticity.md``.  Its error is then measured against :func:`persson_fp.exact`.  If the
   first station is too narrow for the series (a ``ValueError`` from sines), ``"fv"`` with a resolution for ``tol``.
-* **General coefficients B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta, no hardness**: ``"chebyshev"``
-  (:mod:`persson_fp.solvers.chebyshev`), which meets ``tol`` by its own estimate; other coefficients fall through:
+* **General coefficients, no moving wall** (a constant hardness included): ``"chebyshev"``
+  (:mod:`persson_fp.solvers.chebyshev`), which meets ``tol`` by its own estimate -- exact exponentials for
+  B2 = b(p) g(zeta), B1 = c(p) g(zeta), an adaptive exponential march in V otherwise; where it declines (e.g.
+  its march would need more than its step limit) the problem falls through:
 * **No closed form** (a scale-dependent hardness, general coefficients): ``"fv"`` on the front-fixed engine,
   n_p = n_steps = n from the error models measured in ``benchmarks/plasticity.py`` and ``benchmarks/auto.py``
   (estimate ~ 2e-2 / n^2 for a moving wall, ~ 50 / n^2 for general coefficients, with n cells and n steps), refined
@@ -225,7 +227,7 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, ma
             why = f"the sine series could not serve this scene ({err}); finite volumes with a resolution for tol"
             return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
     declined = ""
-    if problem.general and problem.hardness is None:  # (issue 21) the spectral engine, where it applies
+    if problem.general and not problem.moving_wall:  # (issue 21) the spectral engine, where it applies
         try:
             return _solve_chebyshev(problem, zeta_out, tol, budget)
         except (ValueError, SolverError) as err:
@@ -239,9 +241,10 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, ma
 
 
 def _solve_chebyshev(problem, zeta_out, tol, budget):
-    """General coefficients B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta without a hardness: method "chebyshev"
-    (spectral in p, exact in V; its own loop meets ``tol`` -- 5-25 ms for 1e-4 ... 1e-10 on the reference problem
-    in ``benchmarks/results/general_engine.md``, where fv needs seconds for 1e-6)."""
+    """General coefficients without a moving wall: method "chebyshev" (spectral in p; exact in V for b(p) g(zeta),
+    an adaptive exponential march otherwise; its own loop meets ``tol`` -- 5-25 ms for 1e-4 ... 1e-10 on the
+    reference problem in ``benchmarks/results/general_engine.md``, where fv needs seconds for 1e-6; the
+    zeta-dependent and hardness cases in ``benchmarks/results/general_engine_wide.md``)."""
     from persson_fp.solvers.chebyshev import ChebyshevSolver
 
     t0 = time.perf_counter()
@@ -249,8 +252,9 @@ def _solve_chebyshev(problem, zeta_out, tol, budget):
     L1, area, kind = _errors(sol)
     sol.info["auto"] = {
         "method": "chebyshev",
-        "why": "general coefficients of the form b(p) dV/dzeta: Chebyshev collocation in p, exact exponentials in V, "
-        "degree and start refined until the estimate (3/4-degree and 4 V0 partners) meets tol",
+        "why": f"general coefficients (path {sol.info['path']!r}): Chebyshev collocation in p, exact exponentials "
+        "or an adaptive exponential march in V, degree, start and march refined until the estimate (3/4-degree "
+        "and 4 V0 partners, the march's companion) meets tol",
         "tol": tol,
         "L1": L1,
         "area_error": area,

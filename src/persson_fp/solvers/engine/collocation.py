@@ -29,6 +29,8 @@ __all__ = [
     "chebyshev_grid",
     "start_density",
     "propagate_with_integral",
+    "with_wall_rows",
+    "generator",
     "wall_losses",
     "interpolate",
     "lamperti_distance",
@@ -163,6 +165,35 @@ def generator(grid: ChebGrid, b, c):
     return M[:, 1:-1, 1:-1]
 
 
+def with_wall_rows(grid: ChebGrid, L, b, c=None):
+    """The operator augmented by the mass out through each wall and the drift moment: shape (n_loads, n + 2, n + 2).
+
+    The state [P at the interior nodes, mass out at p = 0, mass out at p_max, int int c P dp dV] obeys d/dV of it
+    = this matrix times it: the next two rows are the wall fluxes 1/2 d(bP)/dp at p = 0 and -1/2 d(bP)/dp at p_max
+    (P = 0 on the walls, so the drift carries nothing through them; :func:`wall_losses`), the last the drift's
+    moment int c P dp (Clenshaw--Curtis) of the first-moment law d/dV int p P dp = int c P dp - p_max J(p_max).
+
+    Parameters
+    ----------
+    grid : ChebGrid
+    L : ndarray, shape (n_loads, n - 1, n - 1)
+        The operator (:func:`generator`).
+    b : ndarray, shape (n_loads, n + 1)
+        Diffusion per unit V at the nodes.
+    c : ndarray or None, shape (n_loads, n + 1)
+        Drift per unit V at the nodes (None: 0).
+    """
+    nl, m, _ = L.shape
+    M = np.zeros((nl, m + 3, m + 3))
+    M[:, :m, :m] = L
+    rows = 0.5 * grid.D1[:, [0, -1], 1:-1] * b[:, None, 1:-1]
+    M[:, m, :m] = rows[:, 0]
+    M[:, m + 1, :m] = -rows[:, 1]
+    if c is not None:
+        M[:, m + 2, :m] = (grid.w * c)[:, 1:-1]
+    return M
+
+
 def propagate_with_integral(L, P_start, dV: float):
     """P after dV and its integral over the step, for each load: one exponential of [[L dV, P0 dV], [0, 0]].
 
@@ -267,7 +298,7 @@ def lamperti_distance(bfun, a, b):
     return half * np.sum(_GL_W / np.sqrt(np.maximum(bfun(q), 1e-300)), axis=-1)
 
 
-def start_density(coef, p, p0, V0):
+def start_density(coef, p, p0, V0, p_wall=None):
     r"""The PDF at V0 of the process started at p0 (small-time expansion), at the nodes ``p``.
 
     Parameters
@@ -280,6 +311,8 @@ def start_density(coef, p, p0, V0):
         The starts (the delta's positions at V = 0).
     V0 : float, pressure^2
         The start's V.
+    p_wall : float or None, pressure
+        An absorbing wall above p0 (a constant hardness sigma_Y): its image is subtracted too.
 
     Returns
     -------
@@ -293,13 +326,15 @@ def start_density(coef, p, p0, V0):
     q = mid[..., None] + half[..., None] * _GL_T  # (n_loads, m, 24) quadrature points of [p0, p]
     q0 = 0.5 * p0[:, None] * (1.0 + _GL_T)  # of [0, p0]
     shifts = np.array([-2.0, -1.0, 0.0, 1.0, 2.0]) * h
-    pts = np.concatenate([(q[None] + shifts[:, None, None, None]).ravel(), q0.ravel(), p.ravel()])
+    qw = p0[:, None] + 0.5 * ((p0 if p_wall is None else p_wall) - p0)[:, None] * (1.0 + _GL_T)  # of [p0, wall]
+    pts = np.concatenate([(q[None] + shifts[:, None, None, None]).ravel(), q0.ravel(), p.ravel(), qw.ravel()])
     b_all, c_all = coef(pts)
     k = q.size * 5
     bs = b_all[:k].reshape((5,) + q.shape)
     cs = np.zeros_like(bs) if c_all is None else c_all[:k].reshape((5,) + q.shape)
     b_q0 = np.maximum(b_all[k : k + q0.size].reshape(q0.shape), 1e-300)
-    b_p = np.maximum(b_all[k + q0.size :].reshape(p.shape), 1e-300)
+    b_p = np.maximum(b_all[k + q0.size : k + q0.size + p.size].reshape(p.shape), 1e-300)
+    b_qw = np.maximum(b_all[k + q0.size + p.size :].reshape(qw.shape), 1e-300)
     b0 = np.maximum(bs[2], 1e-300)
     b1 = (bs[0] - 8 * bs[1] + 8 * bs[3] - bs[4]) / (12 * h)
     b2 = (-bs[0] + 16 * bs[1] - 30 * bs[2] + 16 * bs[3] - bs[4]) / (12 * h * h)
@@ -317,5 +352,8 @@ def start_density(coef, p, p0, V0):
         lam_mean = np.where(dy != 0, lam_int / np.where(dy == 0, 1.0, dy), lam_mid)
         y0 = (0.5 * p0 * np.sum(_GL_W / np.sqrt(b_q0), axis=-1))[:, None]  # the start's distance from the wall
         gauss = np.exp(-0.5 * dy * dy / V0) - np.exp(-0.5 * (2.0 * y0 + dy) ** 2 / V0)
+        if p_wall is not None:  # the image across the wall at distance yw above the start
+            yw = (0.5 * (p_wall - p0) * np.sum(_GL_W / np.sqrt(b_qw), axis=-1))[:, None]
+            gauss = gauss - np.exp(-0.5 * (2.0 * yw - dy) ** 2 / V0)
         P = gauss * np.exp(drift - V0 * lam_mean) / np.sqrt(2 * np.pi * V0 * b_p)
     return np.where(np.isfinite(P), P, 0.0)

@@ -1,0 +1,151 @@
+r"""The Fokker--Planck coefficients per unit V for method ``"chebyshev"``: separable or V-dependent.
+
+In the variance-like variable V (dV = V'(zeta) dzeta) the Fokker--Planck equation of the Xu et al. tutorial
+(Eq. 'E:Fokker_Planck_Forward') reads :math:`\partial_V P = \tfrac12\partial_p^2(bP) - \partial_p(cP)` with
+
+.. math::  b(p, V) = B_2(p, \zeta(V)) / V'(\zeta(V)), \qquad c(p, V) = B_1(p, \zeta(V)) / V'(\zeta(V)).
+
+Where b and c do not depend on V (B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta: the homogenised theory, any
+pressure-dependent diffusion of that form) the collocated operator is constant and one exponential propagates it
+exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver marches it with adaptive Magnus
+steps (:mod:`persson_fp.solvers.engine.magnus`).  The form is detected by sampling b and c on 33 pressures at 9
+magnifications (relative tolerance 1e-9).  A third form is exact too: b = s(V) b(p, V_max), c = s(V) c(p, V_max) (a
+zeta-dependent factor common to both, e.g. B2 = b(p) g(zeta) with any g): in the clock tau = int s dV it is the
+separable form, and one exponential over the clock's increment (``Coefficients.tau``) propagates it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["Coefficients"]
+
+
+class Coefficients:
+    """b(p, V), c(p, V) of a problem (module docstring), its detected form and an envelope for the domain.
+
+    Parameters
+    ----------
+    solver : ChebyshevSolver
+        Gives the problem, its magnification of V (``zeta_from_V``) and the output stations.
+
+    Attributes
+    ----------
+    separable : bool
+        True where b and c do not depend on V.
+    clock : bool
+        True where they depend on V through a common factor s(V) only (and are not separable).
+    drift : bool
+        True where c is not identically 0 on the probe grid.
+    """
+
+    def __init__(self, solver):
+        self._solver = solver
+        pr = self.problem = solver.problem
+        z_ref = float(pr.zeta_max)
+        if not float(pr.dV_dzeta(z_ref)) > 0:
+            raise ValueError("method 'chebyshev' needs dV/dzeta > 0 at zeta_max")
+        hi = float(pr.sigma_Y(1.0)) if pr.hardness is not None else pr.p_max(8.0)
+        probe = np.linspace(0.0, hi, 33)
+        zs = [z for z in np.geomspace(1.0 + 1e-9, z_ref, 9) if float(pr.dV_dzeta(z)) > 0]
+        self._probe_z = np.array(zs)
+        bs, cs = [], []
+        for z in zs:
+            c, b = self._per_V(probe, z)
+            bs.append(b)
+            cs.append(np.zeros_like(b) if c is None else c)
+        bs, cs = np.array(bs), np.array(cs)
+        scale_b = max(float(np.max(np.abs(bs))), 1e-300)
+        scale_c = max(float(np.max(np.abs(cs))), scale_b / max(probe[-1], 1e-300), 1e-300)
+        self.drift = bool(np.any(cs != 0.0))
+        self.separable = bool(
+            np.max(np.abs(bs - bs[-1])) <= 1e-9 * scale_b and np.max(np.abs(cs - cs[-1])) <= 1e-9 * scale_c
+        )
+        # a clock: b = s(V) b(p, V_max), c = s(V) c(p, V_max) -- the separable form in tau = int s dV
+        j = int(np.argmax(np.abs(bs[-1])))
+        s = bs[:, j] / bs[-1, j] if bs[-1, j] != 0 else np.ones(len(zs))
+        self.clock = (not self.separable) and bool(
+            np.all(s > 0)
+            and np.max(np.abs(bs - s[:, None] * bs[-1])) <= 1e-9 * scale_b
+            and np.max(np.abs(cs - s[:, None] * cs[-1])) <= 1e-9 * scale_c
+        )
+        self.z_ref = z_ref
+        self._p_star = float(probe[j])
+        self._tau_cache: dict = {}
+
+    def _per_V(self, p, z):
+        """(c or None, b) per unit V at pressures ``p`` and magnification ``z``."""
+        pr = self.problem
+        g = float(pr.dV_dzeta(z))
+        if pr.general:
+            B1, B2 = pr.coefficients(p, z)
+            return (B1 / g if self.problem.B1_fun is not None else None), B2 / g
+        return None, np.ones(np.shape(p))
+
+    def tau(self, V_a: float, V_b: float) -> float:
+        """The clock int_{V_a}^{V_b} s dV (pressure^2) of the clock form, s = b(p, V) / b(p, V_max).
+
+        tau(0, V_b) - tau(0, V_a), each by adaptive Gauss--Kronrod quadrature in zeta (``scipy.integrate.quad``,
+        relative 1e-13; cached per V) of B2(p*, zeta) / b(p*, V_max) at the pressure p* of the largest b, split at
+        the spectrum's roll-off (a kink of dV/dzeta that quad alone misjudges: 6e-9 relative measured)."""
+        return self._tau0(V_b) - self._tau0(V_a)
+
+    def _tau0(self, V: float) -> float:
+        from scipy.integrate import quad
+
+        V = float(V)
+        if V <= 0.0:
+            return 0.0
+        if V not in self._tau_cache:
+            pr = self.problem
+            p_star = np.array([self._p_star])
+            b_ref = float(self._per_V(p_star, self.z_ref)[1][0])
+            zb = self.zeta_of(V)
+            zr = getattr(pr.psd, "zeta_r", None)
+            pts = [zr] if zr is not None and 1.0 < zr < zb else None
+            self._tau_cache[V] = float(
+                quad(
+                    lambda z: float(pr.coefficients(p_star, z)[1][0]) / b_ref,
+                    1.0,
+                    zb,
+                    epsabs=0.0,
+                    epsrel=1e-13,
+                    limit=500,
+                    points=pts,
+                )[0]
+            )
+        return self._tau_cache[V]
+
+    def zeta_of(self, V: float) -> float:
+        """The magnification where the variance is V."""
+        return float(self._solver.zeta_from_V(V)[0])
+
+    def at(self, p, V=None):
+        """(b, c or None) per unit V at pressures ``p`` (any shape) and variance ``V`` (ignored if separable).
+
+        Raises
+        ------
+        ValueError
+            dV/dzeta vanishes at zeta(V) (V is no clock there: use method 'fv' or 'mol').
+        """
+        z = self.z_ref if (self.separable or V is None) else self.zeta_of(V)
+        if not float(self.problem.dV_dzeta(z)) > 0:
+            raise ValueError(
+                f"method 'chebyshev' marches in V and needs dV/dzeta > 0, which vanishes at zeta = {z:.6g}; "
+                "use method='fv' or 'mol'"
+            )
+        c, b = self._per_V(p, z)
+        return b, (c if self.drift else None)
+
+    def envelope(self, p):
+        """(b_max, c_max): the largest b and outward drift c / sqrt(b) over the probe magnifications, at ``p``."""
+        if self.separable:
+            b, c = self.at(p)
+            return b, (np.zeros_like(b) if c is None else c)
+        out_b, out_c = None, None
+        for z in self._probe_z:
+            c, b = self._per_V(p, z)
+            c = np.zeros_like(b) if c is None else c
+            out_b = b if out_b is None else np.maximum(out_b, b)
+            out_c = c if out_c is None else np.maximum(out_c, c)
+        return out_b, out_c
