@@ -104,9 +104,10 @@ plt.show()
 # %% [markdown]
 # ## `method="auto"`: an accuracy, not a method
 # Where a closed form exists `auto` takes the sine series (that closed form summed to `tol`) and reports the
-# true error; for coefficients of the form B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta (the drift model below) it
-# takes `chebyshev` (spectral in p, exact in V, refined until its own estimate meets `tol`); otherwise `fv` on
-# the general engine at a resolution from a measured error model, refined until its own estimate meets `tol`.
+# true error; for general coefficients without a moving wall (the drift model below) it takes `chebyshev`
+# (spectral in p; exact in V where B2 = b(p) g(zeta), B1 = c(p) g(zeta), an adaptive 4th-order exponential march
+# otherwise; refined until its own estimate meets `tol`); otherwise (a moving wall, or a problem `chebyshev`
+# declines) `fv` on the general engine at a resolution from a measured error model, refined the same way.
 
 # %%
 scenes = {
