@@ -400,8 +400,8 @@ class Solution:
         Keys ``"L1"`` (``int |P0 - P0_ref| dp``) and ``"contact_area"`` (and, with a hardness, ``"elastic_area"``,
         ``"plastic_area"``, ``"noncontact_area"``), arrays of shape (n_zeta, n_loads), and ``"kind"``: where a closed
         form exists the *true* error against :func:`persson_fp.exact`; otherwise (a moving yield wall, general
-        coefficients) the solver's own estimate, ``|result - result at half the resolution|`` (conservative: 3x the
-        error of a second-order method in its asymptotic range); for Monte Carlo the standard error of A* is
+        coefficients) the solver's own estimate, as ``info["error_estimate"]["method"]`` states (fv, mol: ``|result -
+        result at half the resolution|``; chebyshev: partner runs, far-wall loss, march); for Monte Carlo the standard error of A* is
         added as ``"stderr_area"``.  Computed once and kept in ``info["error_estimate_view"]``.
         """
         cached = self.info.get("error_estimate_view")
@@ -410,7 +410,7 @@ class Solution:
         est = self.info.get("error_estimate")
         if est is not None:
             out = {
-                "kind": "estimate: |result - half-resolution result| (conservative)",
+                "kind": "estimate: " + str(est.get("method", "|result - half-resolution result| (conservative)")),
                 "L1": est["L1"],
                 "contact_area": est["noncontact_area"],  # A_el + A_pl = 1 - A_non: the same difference
             }
