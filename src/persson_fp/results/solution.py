@@ -400,9 +400,9 @@ class Solution:
         Keys ``"L1"`` (``int |P0 - P0_ref| dp``) and ``"contact_area"`` (and, with a hardness, ``"elastic_area"``,
         ``"plastic_area"``, ``"noncontact_area"``), arrays of shape (n_zeta, n_loads), and ``"kind"``: where a closed
         form exists the *true* error against :func:`persson_fp.exact`; otherwise (a moving yield wall, general
-        coefficients) the solver's own estimate, as ``info["error_estimate"]["method"]`` states (fv, mol: ``|result -
-        result at half the resolution|``; chebyshev: partner runs, far-wall loss, march); for Monte Carlo the standard error of A* is
-        added as ``"stderr_area"``.  Computed once and kept in ``info["error_estimate_view"]``.
+        coefficients) the solver's own estimate, as ``info["error_estimate"]["method"]`` states (fv, mol: the run
+        against half the resolution; chebyshev: partner runs, far wall, march); Monte Carlo adds the standard error
+        of A* as ``"stderr_area"``.  Computed once and kept in ``info["error_estimate_view"]``.
         """
         cached = self.info.get("error_estimate_view")
         if cached is not None:
