@@ -170,7 +170,7 @@ class Solver:
                 which = {
                     "hardness": "'fv', 'mol' or 'sines'",
                     "moving_wall": "'fv' or 'mol'",
-                    "general": "'fv' or 'mol'",
+                    "general": "'chebyshev', 'fv' or 'mol'",
                 }
                 raise ValueError(f"method {self.name!r} does not solve {what}; use method={which[need]}")
         self.check = check if check is True or check is False else check_bool(check, "check")
