@@ -129,7 +129,9 @@ def add_parser(sub) -> None:
     so = sub.add_parser("solve", help="solve one problem with a numerical method")
     _add_problem_args(so)
     so.add_argument(
-        "--method", default="fv", help="auto | fv | mol | sines | py-pde | fipy | chapman-kolmogorov | monte-carlo"
+        "--method",
+        default="fv",
+        help="auto | fv | mol | sines | chebyshev | py-pde | fipy | chapman-kolmogorov | monte-carlo",
     )
     so.add_argument("--n-p", dest="n_p", type=_count, default=None, help="grid cells / points / modes")
     so.add_argument("--n-steps", dest="n_steps", type=_count, default=None, help="steps in zeta (fixed-step schemes)")
