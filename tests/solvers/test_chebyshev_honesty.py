@@ -142,10 +142,7 @@ FAMILIES = (
 def draw(rng):
     """A random case: (problem, exact(edges, z) -> (masses, A_el, A_pl or None), label, zeta_out, options)."""
     pr, exact, label, z_end = FAMILIES[int(rng.integers(len(FAMILIES)))](rng)
-    z_hi = pr.zeta_max if z_end is None else z_end
-    n_st = int(rng.integers(1, 4))
-    zeta_out = np.sort(np.exp(rng.uniform(np.log(1.0 + 0.3 * (z_hi - 1.0)), np.log(z_hi), n_st)))
-    zeta_out[-1] = z_hi
+    zeta_out = th.stations(rng, pr, z_end)
     if rng.uniform() < 0.5:
         opts = {"tol": float(10.0 ** rng.uniform(-9.0, -4.0))}
     else:

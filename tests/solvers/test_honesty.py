@@ -167,13 +167,19 @@ FLOOR = 1e-12
 FAMILIES = (_drift_case, _drift_case, _besq_case, _strip_case)
 
 
-def draw(rng):
-    """One random case: (problem, exact(edges, zeta) -> (cell masses, A*), label, zeta_out, method, options)."""
-    pr, exact, label, z_end = FAMILIES[int(rng.integers(len(FAMILIES)))](rng)
+def stations(rng, pr, z_end):
+    """1 to 3 random output stations in the last 70 % of [1, z_end] (log-uniform), the last one z_end."""
     z_hi = pr.zeta_max if z_end is None else z_end
     n_st = int(rng.integers(1, 4))
     zeta_out = np.sort(np.exp(rng.uniform(np.log(1.0 + 0.3 * (z_hi - 1.0)), np.log(z_hi), n_st)))
     zeta_out[-1] = z_hi
+    return zeta_out
+
+
+def draw(rng):
+    """One random case: (problem, exact(edges, zeta) -> (cell masses, A*), label, zeta_out, method, options)."""
+    pr, exact, label, z_end = FAMILIES[int(rng.integers(len(FAMILIES)))](rng)
+    zeta_out = stations(rng, pr, z_end)
     method = str(rng.choice(["fv", "mol"]))
     if rng.uniform() < 0.3:
         opts = {"tol": float(rng.choice([1e-3, 3e-4]))}
