@@ -35,6 +35,7 @@ load are the quadratures and wall fluxes of the polynomial itself.
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 from scipy.special import ndtr
@@ -198,7 +199,9 @@ class ChebyshevSolver(Solver):
 
                 y0 = np.concatenate([P[:, 1:-1], np.zeros((pb.size, 3))], axis=1)
                 try:
-                    y, t_err[k], st = magnus_march(A_of, y0, V0, float(V), tol_t, norm, floor)
+                    y, t_err[k], st = magnus_march(A_of, y0, V0, float(V), tol_t, norm, floor, deadline=self._deadline)
+                except TimeoutError as err:
+                    self._out_of_time(str(err))
                 except RuntimeError as err:
                     from persson_fp.results.invariants import SolverError
 
@@ -249,6 +252,14 @@ class ChebyshevSolver(Solver):
         self._unresolved = unresolved
         return main, grid_part, start_part
 
+    def _out_of_time(self, where: str):
+        from persson_fp.results.invariants import SolverError
+
+        raise SolverError(
+            f"chebyshev: max_time = {self.max_time:.3g} s exceeded ({where}); loosen tol, or pass a larger max_time "
+            "(seconds)"
+        ) from None
+
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
         tol = o["tol"]
@@ -259,7 +270,10 @@ class ChebyshevSolver(Solver):
         tol_t = TIME_SHARE * tol
         runs, hard = 0, self._sigma is not None
         total = {"steps": 0, "rejected": 0, "expm": 0}
+        self._deadline = time.perf_counter() + self.max_time
         while True:
+            if time.perf_counter() > self._deadline:
+                self._out_of_time(f"{runs} runs done, degree {n}")
             main, grid_part, start_part = self._three_runs(n, frac, p_max, tol_t)
             runs += 3
             far, balance, t_err = self._far, self._balance, self._time_err

@@ -8,10 +8,12 @@ In the variance-like variable V (dV = V'(zeta) dzeta) the Fokker--Planck equatio
 Where b and c do not depend on V (B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta: the homogenised theory, any
 pressure-dependent diffusion of that form) the collocated operator is constant and one exponential propagates it
 exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver marches it with adaptive Magnus
-steps (:mod:`persson_fp.solvers.engine.magnus`).  The form is detected by sampling b and c on 33 pressures at 9
-magnifications (relative tolerance 1e-9).  A third form is exact too: b = s(V) b(p, V_max), c = s(V) c(p, V_max) (a
-zeta-dependent factor common to both, e.g. B2 = b(p) g(zeta) with any g): in the clock tau = int s dV it is the
-separable form, and one exponential over the clock's increment (``Coefficients.tau``) propagates it.
+steps (:mod:`persson_fp.solvers.engine.magnus`). The form is detected by sampling b and c on 33 pressures at 9
+magnifications (relative tolerance 1e-9), and confirmed: the separable form by an adaptive quadrature in zeta (int
+B2(p*, zeta) / b(p*) dzeta must be V(zeta_max)), the clock form at 129 magnifications. A third form is exact too: b
+= s(V) b(p, V_max), c = s(V) c(p, V_max) (a zeta-dependent factor common to both, e.g. B2 = b(p) g(zeta) with any
+g): in the clock tau = int s dV it is the separable form, and one exponential over the clock's increment
+(``Coefficients.tau``) propagates it.
 """
 
 from __future__ import annotations
@@ -46,8 +48,28 @@ class Coefficients:
         if not float(pr.dV_dzeta(z_ref)) > 0:
             raise ValueError("method 'chebyshev' needs dV/dzeta > 0 at zeta_max")
         hi = float(pr.sigma_Y(1.0)) if pr.hardness is not None else pr.p_max(8.0)
-        probe = np.linspace(0.0, hi, 33)
-        zs = [z for z in np.geomspace(1.0 + 1e-9, z_ref, 9) if float(pr.dV_dzeta(z)) > 0]
+        self._probe = np.linspace(0.0, hi, 33)
+        self.z_ref = z_ref
+        self._tau_cache: dict = {}
+        self._classify(9)
+        if self.separable and pr.general:
+            # 9 magnifications can miss a zeta-dependence between them (a bump): confirm the form by an adaptive
+            # quadrature of B2(p*, zeta) / b(p*) over [1, zeta_max], which must give V(zeta_max)
+            V_max = float(pr.V_max)
+            tau = self._tau0(V_max)
+            if not np.isfinite(tau):
+                raise ValueError("B2 is not finite at some magnification in [1, zeta_max] (found by quadrature)")
+            if abs(tau - V_max) > 1e-8 * V_max:
+                self._classify(129)
+                self.separable = False
+                self._tau_cache.clear()
+        elif self.clock:
+            self._classify(129)  # the clock form confirmed on a dense set (its clock is a quadrature of B2 itself)
+
+    def _classify(self, n_z: int):
+        """Sample b, c at 33 pressures and ``n_z`` magnifications; set ``drift``, ``separable``, ``clock``."""
+        pr, probe, z_ref = self.problem, self._probe, self.z_ref
+        zs = [z for z in np.geomspace(1.0 + 1e-9, z_ref, n_z) if float(pr.dV_dzeta(z)) > 0]
         self._probe_z = np.array(zs)
         bs, cs = [], []
         for z in zs:
@@ -69,9 +91,7 @@ class Coefficients:
             and np.max(np.abs(bs - s[:, None] * bs[-1])) <= 1e-9 * scale_b
             and np.max(np.abs(cs - s[:, None] * cs[-1])) <= 1e-9 * scale_c
         )
-        self.z_ref = z_ref
         self._p_star = float(probe[j])
-        self._tau_cache: dict = {}
 
     def _per_V(self, p, z):
         """(c or None, b) per unit V at pressures ``p`` and magnification ``z``."""

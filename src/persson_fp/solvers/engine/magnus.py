@@ -28,6 +28,7 @@ marches of a few steps outside the asymptotic range (1.4x under it measured on a
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 import scipy.linalg as sla
@@ -48,7 +49,9 @@ def _step(A_of, V, h, y):
     return np.einsum("lij,lj->li", sla.expm(h * (_B2 * A1 + _B1 * A2)), y)
 
 
-def magnus_march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: float, h0: float | None = None):
+def magnus_march(
+    A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: float, h0: float | None = None, deadline=None
+):
     """March dy/dV = A(V) y from V_a to V_b with adaptive fourth-order exponential steps.
 
     Parameters
@@ -71,6 +74,8 @@ def magnus_march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: floa
         round-off if it is below 100 x floor.
     h0 : float or None
         First trial step; default min((V_b - V_a) / 8, 2 V_a) (a narrow start changes on the scale V_a).
+    deadline : float or None
+        A ``time.perf_counter()`` value: past it the march stops with a ``TimeoutError`` (the caller's max_time).
 
     Returns
     -------
@@ -92,6 +97,8 @@ def magnus_march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: floa
     last_reject = math.inf  # the error of the last rejected try from this V (a round-off test)
     noise_level = floor  # the local error no step size lowers (learnt: the exponential's round-off)
     while V < V_b:
+        if deadline is not None and time.perf_counter() > deadline:
+            raise TimeoutError(f"the march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
         if steps + rejected >= MAX_STEPS:
             raise RuntimeError(f"{MAX_STEPS} exponential steps did not reach V = {V_b:.6g} (at {V:.6g}, h = {h:.3g})")
         last = V + h >= V_b * (1.0 - 1e-13)
