@@ -606,3 +606,16 @@ def test_effective_medium_near_the_threshold_terminates_with_the_linear_law():
     A = np.nextafter(0.5, 0.0)
     fake = SimpleNamespace(centres=c[None], widths=h[None], weights=(shares * (1 - A))[None], atom=np.array([A]))
     assert 0 < leakage.effective_medium_gap(fake)[0] < 1e-14
+
+
+def test_critical_junction_at_a_vanishing_load_is_refused_not_sealed():
+    """At p_bar ~ 1e-9 sqrt(V) the area falls to A_c within round-off of zeta = 1, where u1 diverges: the critical
+    junction was reported 'sealed' (Q = 0) at the load where a seal leaks most; it is now a ValueError, and the
+    effective medium still gives the (open) flow rate."""
+    psd = pf.ContactProblem.reference().psd
+    pr = pf.ContactProblem(psd, E_star=1.0, p_bar=1e-9 * np.sqrt(psd.V()), fudge="WM17")
+    with pytest.raises(ValueError, match="effective-medium"):
+        pf.leak_rate(pr, viscosity=1e-3, pressure_drop=1e5)
+    q = pf.leak_rate(pr, viscosity=1e-3, pressure_drop=1e5, method="effective-medium")
+    q_heavier = pf.leak_rate(pr.with_loads(1e-5 * np.sqrt(psd.V())), viscosity=1e-3, pressure_drop=1e5)
+    assert float(q) > float(q_heavier) > 0.0

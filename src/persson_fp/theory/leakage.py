@@ -85,7 +85,16 @@ def critical_junction_gap(resolved, p_bar, A_c: float = A_C_DEFAULT, dA: float =
     z_c = np.where(open_, resolved.zeta_of_area(p, A_c), zmax)
     u_c = np.zeros(p.shape)
     if np.any(open_):
-        u_c[open_] = np.maximum(resolved.u1(p[open_], z_c[open_], dA=dA), 0.0)
+        u_raw = np.asarray(resolved.u1(p[open_], z_c[open_], dA=dA), dtype=float)
+        bad = ~(np.isfinite(u_raw) & (u_raw > 0.0))
+        if np.any(bad):  # zeta_c within round-off of 1, where u1 = d(A u)/dA diverges: no junction gap to give
+            pb = float(p[open_][bad][0])
+            raise ValueError(
+                f"critical junction undefined at p_bar = {pb:.3g}: the contact area falls to A_c = {A_c:g} at zeta_c "
+                f"= {float(z_c[open_][bad][0]):.9g}, within round-off of zeta = 1, where u1 diverges (the load is too "
+                "small for this estimate); use method='effective-medium'"
+            )
+        u_c[open_] = u_raw
     return u_c, z_c
 
 
