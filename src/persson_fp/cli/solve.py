@@ -142,7 +142,7 @@ def add_parser(sub) -> None:
     so.add_argument("--plot", default=None, help="write a PNG of P0 against the exact solution")
     so.add_argument("--force", action="store_true", help="replace existing --output / --plot files")
     so.add_argument("--seed", type=_count, default=None, help="seed of the random walks (--method monte-carlo)")
-    so.add_argument("--tol", type=float, default=None, help="asked accuracy: with --method auto, fv or mol")
+    so.add_argument("--tol", type=float, default=None, help="asked accuracy: with --method auto, fv, mol or chebyshev")
     so.add_argument("--hardness", type=float, default=None, help="yield stress sigma_Y at zeta = 1 (pressure)")
     so.add_argument(
         "--hardness-exponent", type=float, default=0.0, help="sigma_Y = hardness * zeta^n (default 0: constant)"

@@ -130,7 +130,7 @@ def solve(
         Spectrum, modulus, load(s) and fudge factor.
     method : str or Solver subclass
         "auto" (the cheapest way to ``tol``, :mod:`persson_fp.solvers.auto`) or one of ``METHODS``: "fv",
-        "mol", "sines", "py-pde", "fipy", "chapman-kolmogorov", "monte-carlo".
+        "mol", "sines", "chebyshev", "py-pde", "fipy", "chapman-kolmogorov", "monte-carlo".
     zeta_out : float or array, optional
         Output stations in (1, zeta_max]; default ``zeta_max``.
     tol : float, optional
