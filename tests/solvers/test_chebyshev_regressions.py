@@ -50,3 +50,9 @@ def test_max_time_stops_the_march():
     with pytest.raises(pf.SolverError, match="max_time"):
         pf.solve(pr, method="chebyshev", tol=1e-7, zeta_out=[2.0, 10.0, 128.0], march="magnus", max_time=0.05)
     assert time.perf_counter() - t0 < 2.0  # (the run without a budget takes ~3 s)
+
+
+@pytest.mark.parametrize("B2", [lambda p, z: 0.0 * p, lambda p, z: ((p - 0.5 * SV) / (0.5 * SV)) ** 2 * DV(z)])
+def test_a_diffusion_vanishing_at_the_load_is_named(B2):
+    with pytest.raises(ValueError, match="B2 vanishes at the load"):
+        pf.solve(pf.FokkerPlanckProblem(PSD, p_bar=0.5 * SV, B2=B2), method="chebyshev")

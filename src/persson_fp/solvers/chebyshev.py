@@ -120,6 +120,11 @@ class ChebyshevSolver(Solver):
             probe = np.linspace(0.0, pr.p_max(2.0 * k), 65)
             bb, cc = self._cf.envelope(probe)
             need += max(0.0, float(np.max(cc / np.sqrt(np.maximum(bb, 1e-300))))) * V
+        b_at = b(np.asarray(pr.p_bar, dtype=float))
+        if not np.all(b_at > 1e-300):  # (no spreading from the load: the domain rule below would only run away)
+            raise ValueError(
+                "method 'chebyshev': B2 vanishes at the load p_bar (the start cannot spread); use method='fv' or 'mol'"
+            )
         hi = pbar + math.sqrt(float(b(np.array([pbar]))[0]) * V) * k
         for _ in range(80):
             if float(co.lamperti_distance(b, np.array(pbar), np.array(hi))) >= need:

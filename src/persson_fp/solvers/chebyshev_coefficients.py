@@ -52,7 +52,7 @@ class Coefficients:
         self.z_ref = z_ref
         self._tau_cache: dict = {}
         self._classify(9)
-        if self.separable and pr.general:
+        if self.separable and pr.general and float(self._per_V(np.array([self._p_star]), z_ref)[1][0]) > 0:
             # 9 magnifications can miss a zeta-dependence between them (a bump): confirm the form by an adaptive
             # quadrature of B2(p*, zeta) / b(p*) over [1, zeta_max], which must give V(zeta_max)
             V_max = float(pr.V_max)
