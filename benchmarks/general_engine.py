@@ -40,7 +40,6 @@ import time
 import warnings
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from scipy.special import ive
@@ -49,6 +48,9 @@ import persson_fp as pf
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from _common import machine, markdown_table, outdir, parser, write_csv  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests", "solvers"))
+import test_chebyshev as tcheb  # noqa: E402  (the squared-Bessel reference and the polynomial's L1, written there)
 
 TARGETS = (1e-4, 1e-6, 1e-8, 1e-10)
 V_START = 2e-3
@@ -78,53 +80,6 @@ def start_density(p, pb, V, slope):
     return 8 * pb / (2 * V) * np.sqrt(X0 / X) * np.exp(-((np.sqrt(X) - np.sqrt(X0)) ** 2) / (2 * V)) * ive(1, z)
 
 
-def _cheb(n):
-    j = np.arange(n + 1)
-    x = -np.cos(np.pi * j / n)
-    c = np.ones(n + 1)
-    c[0] = c[-1] = 2
-    c *= (-1.0) ** j
-    D = np.outer(c, 1 / c) / (x[:, None] - x[None, :] + np.eye(n + 1))
-    D -= np.diag(D.sum(1))
-    th = np.pi * j[1:-1] / n
-    w = np.zeros(n + 1)
-    v = np.ones(n - 1)
-    w[0] = w[n] = 1 / (n * n - 1)
-    for k in range(1, n // 2):
-        v -= 2 * np.cos(2 * k * th) / (4 * k * k - 1)
-    v -= np.cos(n * th) / (n * n - 1)
-    w[1:-1] = 2 * v / n
-    return x, D, w
-
-
-def besq_reference(pb, V, n, V_s_frac, e_k, L):
-    """(pdf callable, A*) for B2 = (1 + p/(2 pb)) dV/dzeta at V: tan-mapped Chebyshev, exact start, one expm."""
-    V_s = V_s_frac * V
-    x, D, w = _cheb(n)
-    e = e_k * np.sqrt(V_s)
-    t0, t1 = np.arctan(-pb / e), np.arctan((L - pb) / e)
-    s = t0 + (t1 - t0) * (x + 1) / 2
-    p = pb + e * np.tan(s)
-    dpdx = e * (t1 - t0) / 2 / np.cos(s) ** 2
-    d2pdx2 = 2 * e * ((t1 - t0) / 2) ** 2 * np.tan(s) / np.cos(s) ** 2
-    D2 = (D @ D) / dpdx[:, None] ** 2 - (d2pdx2 / dpdx**3)[:, None] * D
-    Lop = (0.5 * D2 * (1 + p / (2 * pb))[None, :])[1:-1, 1:-1]
-    P = np.zeros(n + 1)
-    P[1:-1] = sla.expm(Lop * (V - V_s)) @ start_density(p, pb, V_s, 1.0)[1:-1]
-    wb = np.ones(n + 1)
-    wb[0] = wb[-1] = 0.5
-    wb *= (-1.0) ** np.arange(n + 1)
-
-    def pdf(q):
-        xq = (np.arctan((q - pb) / e) - t0) / ((t1 - t0) / 2) - 1
-        d = xq[:, None] - x[None, :]
-        d[d == 0] = 1e-300
-        t = wb / d
-        return np.where(q < L, (t @ P) / t.sum(1), 0.0)
-
-    return pdf, float((w * dpdx) @ P)
-
-
 def reference(name, pr, slope):
     """(pdf callable, A*, uncertainty of the reference in L1)."""
     pb, V = float(pr.p_bar[0]), float(pr.V_max)
@@ -132,36 +87,14 @@ def reference(name, pr, slope):
         ex = pf.exact(pf.ContactProblem.reference())
         return (lambda q: np.asarray(ex.pdf(q)).ravel()), float(np.ravel(ex.contact_area)[0]), 0.0
     L = pb + 45.0 * np.sqrt(V)
-    pdf, A = besq_reference(pb, V, 160, 3e-3, 50.0, L)
-    pdf2, A2 = besq_reference(pb, V, 200, 1e-3, 8.0, L)
+    pdf, A, _ = tcheb.besq_reference(pb, V, n=160, V_start_frac=3e-3, e_k=50.0, L_k=45.0)
+    pdf2, A2, _ = tcheb.besq_reference(pb, V, n=200, V_start_frac=1e-3, e_k=8.0, L_k=45.0)
     q = np.linspace(0.0, L, 20001)
     u = max(abs(A - A2), float(np.trapezoid(np.abs(pdf(q) - pdf2(q)), q)))
     return pdf, A, u
 
 
-def l1_points(q, values, pdf):
-    return float(np.trapezoid(np.abs(values - pdf(q)), q))
-
-
 # -- the competitors ------------------------------------------------------------------------------------------------
-def chebyshev_l1(sol, pdf):
-    """L1 of a chebyshev Solution: its polynomial (barycentric in the map's Chebyshev coordinate) on 20 001 points."""
-    p, P, g = np.atleast_2d(sol.p)[-1], sol.P0_all[-1, 0], sol.info["grid"]
-    n = p.size - 1
-    c, e = float(g["centre"][0]), float(g["eps"][0])
-    a1 = np.arcsinh(-c / e)
-    h = 0.5 * (np.arcsinh((p[-1] - c) / e) - a1)
-    x = -np.cos(np.pi * np.arange(n + 1) / n)
-    q = np.linspace(0.0, p[-1], 20001)[1:-1]
-    d = ((np.arcsinh((q - c) / e) - a1) / h - 1.0)[:, None] - x[None, :]
-    d[d == 0] = 1e-300
-    wb = np.ones(n + 1)
-    wb[0] = wb[-1] = 0.5
-    wb *= (-1.0) ** np.arange(n + 1)
-    t = wb / d
-    return l1_points(q, (t @ P) / t.sum(axis=1), pdf)
-
-
 def cell_l1(p_centres, P, dp, pdf):
     """L1 of cell values against the reference's cell averages (3-point Gauss per cell)."""
     gx = np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]) * dp / 2
@@ -285,7 +218,7 @@ def main(argv=None):
             for tol in TARGETS[:2] if args.quick else TARGETS:
                 try:
                     t, sol = timed(lambda tol=tol: pf.solve(fp, method="chebyshev", tol=tol), max(repeats, 3 * repeats))
-                    add("chebyshev", f"tol={tol:g}", t, chebyshev_l1(sol, pdf),
+                    add("chebyshev", f"tol={tol:g}", t, tcheb.chebyshev_l1(sol, pdf),
                         float(np.max(sol.info["error_estimate"]["L1"])))  # fmt: skip
                 except pf.SolverError as err:
                     add("chebyshev", f"tol={tol:g}", np.nan, np.nan, status=f"SolverError: {err}")

@@ -32,8 +32,10 @@ def _image(p, p_bar, V, b=1.0, c=0.0):
     return phi(p - p_bar - c * V) - np.exp(-2 * c * p_bar / b) * phi(p + p_bar - c * V)
 
 
-def _l1(sol, ref_pdf):
-    """int |P0 - ref| dp at the last station, first load: the polynomial (barycentric form in the Chebyshev
+def chebyshev_l1(sol, ref_pdf):
+    """(Also used by benchmarks/general_engine.py.)
+
+    int |P0 - ref| dp at the last station, first load: the polynomial (barycentric form in the Chebyshev
     coordinate of the solution's map) on 20 001 points, trapezoid (its error << the tested levels)."""
     p, P, g = np.atleast_2d(sol.p)[-1], sol.P0_all[-1, 0], sol.info["grid"]
     n = p.size - 1
@@ -84,7 +86,7 @@ def test_estimate_above_the_true_error_with_drift(seed):
     tol = float(10.0 ** rng.uniform(-9, -5))
     sol = pf.solve(_problem(b, c, pb), method="chebyshev", tol=tol)
     ex = lambda q: _image(q, pb, VMAX, b, c)  # noqa: E731
-    true = _l1(sol, ex)
+    true = chebyshev_l1(sol, ex)
     est = float(sol.info["error_estimate"]["L1"][-1, 0])
     A_true = abs(float(sol.contact_area[-1]) - float(np.sum(sol.weights * ex(sol.p))))
     assert est <= tol
@@ -92,8 +94,10 @@ def test_estimate_above_the_true_error_with_drift(seed):
     assert float(sol.info["error_estimate"]["elastic_area"][-1, 0]) >= A_true or A_true < 1e-11
 
 
-def _besq_reference(p_bar, V_end, n=360, V_start_frac=2e-3, e_k=8.0, L_k=60.0, r=1.0):
-    """P(p, V_end) for B2 = (1 + r p / (2 p_bar)) dV/dzeta: exact free start at a small V, then exp(L dV).
+def besq_reference(p_bar, V_end, n=360, V_start_frac=2e-3, e_k=8.0, L_k=60.0, r=1.0):
+    """(Also used by benchmarks/general_engine.py.)
+
+    P(p, V_end) for B2 = (1 + r p / (2 p_bar)) dV/dzeta: exact free start at a small V, then exp(L dV).
 
     X = (8 p_bar / r)(p + 2 p_bar / r) has quadratic variation 4X dV: a squared Bessel process of dimension 0."""
     V_s = V_start_frac * V_end
@@ -152,8 +156,8 @@ def _besq_reference(p_bar, V_end, n=360, V_start_frac=2e-3, e_k=8.0, L_k=60.0, r
 def test_squared_bessel_reference():
     # two reference resolutions (map width, start, degree): their spread u bounds the reference's own error
     # (round-off in the exponential of the strongly clustered grid limits it to ~1e-10)
-    pdf, A_ref, F_ref = _besq_reference(PB, VMAX, n=160, V_start_frac=3e-3, e_k=50.0, L_k=45.0)
-    pdf2, A_ref2, _ = _besq_reference(PB, VMAX, n=200, V_start_frac=1e-3, e_k=8.0, L_k=45.0)
+    pdf, A_ref, F_ref = besq_reference(PB, VMAX, n=160, V_start_frac=3e-3, e_k=50.0, L_k=45.0)
+    pdf2, A_ref2, _ = besq_reference(PB, VMAX, n=200, V_start_frac=1e-3, e_k=8.0, L_k=45.0)
     q = np.linspace(0.0, 45.0 * np.sqrt(VMAX), 20001)[1:-1]
     u = max(abs(A_ref - A_ref2), float(np.trapezoid(np.abs(pdf(q) - pdf2(q)), q)), 1e-11)
     assert u < 5e-10 and abs(F_ref - PB) / PB < 5e-10
@@ -161,7 +165,7 @@ def test_squared_bessel_reference():
     for tol in (1e-6, 1e-8):
         sol = pf.solve(fp, method="chebyshev", tol=tol)
         true_A = abs(float(sol.contact_area[-1]) - A_ref)
-        true_L1 = _l1(sol, pdf)
+        true_L1 = chebyshev_l1(sol, pdf)
         est = sol.info["error_estimate"]
         assert true_L1 <= tol + u and true_A <= tol + u, (tol, true_L1, true_A)
         assert float(est["L1"][-1, 0]) >= true_L1 - u
@@ -174,12 +178,12 @@ def test_estimate_above_the_true_error_random_squared_bessel(seed):
     # random slope r of B2 = (1 + r p / (2 p_bar)) dV/dzeta, load and tol; reference: the squared Bessel start
     rng = np.random.default_rng(100 + seed)
     r, pb, tol = float(rng.uniform(0.2, 3.0)), PB * float(rng.uniform(0.7, 2.0)), float(10.0 ** rng.uniform(-8, -5))
-    pdf, A_ref, F_ref = _besq_reference(pb, VMAX, n=160, V_start_frac=3e-3, e_k=50.0, L_k=45.0, r=r)
-    _, A_ref2, _ = _besq_reference(pb, VMAX, n=200, V_start_frac=1e-3, e_k=8.0, L_k=45.0, r=r)
+    pdf, A_ref, F_ref = besq_reference(pb, VMAX, n=160, V_start_frac=3e-3, e_k=50.0, L_k=45.0, r=r)
+    _, A_ref2, _ = besq_reference(pb, VMAX, n=200, V_start_frac=1e-3, e_k=8.0, L_k=45.0, r=r)
     u = max(abs(A_ref - A_ref2), 1e-11)
     fp = pf.FokkerPlanckProblem(PSD, p_bar=pb, B2=lambda p, z: PSD.dV_dzeta(z) * (1 + r * p / (2 * pb)))
     sol = pf.solve(fp, method="chebyshev", tol=tol)
-    true_A, true_L1 = abs(float(sol.contact_area[-1]) - A_ref), _l1(sol, pdf)
+    true_A, true_L1 = abs(float(sol.contact_area[-1]) - A_ref), chebyshev_l1(sol, pdf)
     est = sol.info["error_estimate"]
     assert true_L1 <= tol + u and true_A <= tol + u
     assert float(est["L1"][-1, 0]) >= true_L1 - u and float(est["elastic_area"][-1, 0]) >= true_A - u
