@@ -83,6 +83,12 @@ class Interaction:
     rho: float
     name: str = "interaction"
 
+    def _set_range(self, w: float, rho: float):
+        """``w`` and ``rho``, each a finite number > 0, whose ratio w / rho stays in floating-point range."""
+        self.w = as_positive_scalar(w, "w")
+        self.rho = as_positive_scalar(rho, "rho")
+        _check_scale(self.w, self.rho)
+
     def sigma(self, u) -> np.ndarray:  # pragma: no cover - abstract
         """Attractive traction at gap(s) ``u`` >= 0 (pressure)."""
         raise NotImplementedError
@@ -135,9 +141,7 @@ class Exponential(Interaction):
     name = "exponential"
 
     def __init__(self, w: float, rho: float):
-        self.w = as_positive_scalar(w, "w")
-        self.rho = as_positive_scalar(rho, "rho")
-        _check_scale(self.w, self.rho)
+        self._set_range(w, rho)
 
     def sigma(self, u):
         return self.w / self.rho * np.exp(-np.asarray(u, float) / self.rho)
@@ -211,9 +215,7 @@ class LennardJones93(Interaction):
     name = "lennard-jones-9-3"
 
     def __init__(self, w: float, rho: float):
-        self.w = as_positive_scalar(w, "w")
-        self.rho = as_positive_scalar(rho, "rho")
-        _check_scale(self.w, self.rho)
+        self._set_range(w, rho)
 
     def sigma(self, u):
         x = self.rho / (np.asarray(u, float) + self.rho)
