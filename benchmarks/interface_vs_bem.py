@@ -348,8 +348,8 @@ def _source(args, d):
     if args.generate:
         if have_tamaas():
             generate(d, n=args.N or (256 if args.quick else 512), quick=args.quick)
-        else:
-            print("Tamaas is not installed (pip install .[bem]): the shipped BEM CSVs of data/bem are used.")
+        else:  # asked to generate and cannot: an error, not the shipped data under the generated name
+            raise SystemExit("interface_vs_bem.py: --generate needs Tamaas and reynoldsflow (pip install '.[bem]')")
     folder = os.path.join(d, "bem_generated")
     agreement = []
     if all(os.path.exists(os.path.join(folder, f)) for f in (*FILES, "generation.csv")):
