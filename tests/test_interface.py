@@ -619,3 +619,11 @@ def test_critical_junction_at_a_vanishing_load_is_refused_not_sealed():
     q = pf.leak_rate(pr, viscosity=1e-3, pressure_drop=1e5, method="effective-medium")
     q_heavier = pf.leak_rate(pr.with_loads(1e-5 * np.sqrt(psd.V())), viscosity=1e-3, pressure_drop=1e5)
     assert float(q) > float(q_heavier) > 0.0
+
+
+def test_a_threshold_given_to_the_effective_medium_is_refused():
+    """A_c belongs to the critical junction; the effective medium ignored it silently."""
+    psd = pf.ContactProblem.reference().psd
+    pr = pf.ContactProblem(psd, E_star=1.0, p_bar=1e-2 * np.sqrt(psd.V()), fudge="WM17")
+    with pytest.raises(ValueError, match="A_c"):
+        pf.leak_rate(pr, viscosity=1.0, pressure_drop=1.0, method="effective-medium", A_c=0.3)

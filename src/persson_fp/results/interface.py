@@ -184,6 +184,11 @@ def leak_rate(
     if method == "critical-junction":
         gap, zeta_c = _leak.critical_junction_gap(r, problem.p_bar, A_c=A_c)
     else:
+        if A_c != _leak.A_C_DEFAULT:  # (silently ignored before): Bruggeman's own threshold is 1/2 in 2-D
+            raise ValueError(
+                f"A_c = {A_c!r} applies to method='critical-junction' only; the effective medium percolates at its "
+                "own threshold (2-D Bruggeman: contact fraction 1/2)"
+            )
         gap, gap_err = _leak.effective_medium_gap(GapDistribution(r, problem.p_bar), return_error=True)
     Q = _leak.flow_rate(gap, viscosity, pressure_drop, aspect)
     if not full_output:
