@@ -97,6 +97,7 @@ def test_shortcuts_decide_as_the_general_path():
     """Random one-station, one-load results (some dipping, some unbalanced): the checks with the extrema handed over
     by build and the one-load drift in Python floats equal those of the general path (the same row as two loads)."""
     rng = np.random.default_rng(7)
+    clean = 0
     for _ in range(200):
         P = rng.normal(0.0, 1.0, 40) + rng.uniform(0.0, 3.0)
         P[rng.random(40) < 0.3] *= rng.choice([1e-12, 1e-3, 1.0])
@@ -108,6 +109,9 @@ def test_shortcuts_decide_as_the_general_path():
         for key in ("area_range", "area_increase", "max_load_drift", "min_P0", "breaches", "negative_P0"):
             assert one.info["checks"][key] == two.info["checks"][key] == again[key], key
         assert one.info["checks"]["min_P0"] == float(P.min())
+        assert one.info["checks"] == again  # every check of the one-load fast path, as the full path finds it
+        clean += not again["breaches"] and again["min_P0"] >= 0.0
+    assert clean >= 20  # (the fast path's own cases are among the draws)
 
 
 def test_whole_sines_call_checks_and_estimates():

@@ -210,11 +210,14 @@ class Solver:
         load drift 1e-2, A* growth 1e-6 relative), loosened to 100 x ``rtol`` (load) and 10 x ``rtol``
         (A*) for a method run at a looser tolerance than that.
         """
+        o = self.opts
+        r = max(float(o.get("rtol") or 0.0), float(o.get("tol") or 0.0))
+        start = getattr(self, "_start_load_error", None)
+        if start is None and 100.0 * r <= DEFAULT_TOLERANCES["load"] and 10.0 * r <= DEFAULT_TOLERANCES["area"]:
+            return DEFAULT_TOLERANCES  # the defaults themselves (check_invariants reads them, never writes)
         tol = dict(DEFAULT_TOLERANCES)
-        r = max(float(self.opts.get("rtol") or 0.0), float(self.opts.get("tol") or 0.0))
         tol["load"] = max(tol["load"], 100.0 * r)
         tol["area"] = max(tol["area"], 10.0 * r)
-        start = getattr(self, "_start_load_error", None)
         if start is not None:  # a one-cell delta carries the load of its cell centre from the start
             tol["load"] = tol["load"] + start
         return tol

@@ -321,9 +321,7 @@ class MonteCarloSolver(Solver):
         """Statistical tolerances: the load (the walkers' mean pressure, unbiased: the killed walk is a
         martingale) within 6 standard errors; A* is a surviving fraction, in [0, 1] and non-increasing
         by construction; the histogram is non-negative."""
-        tol = super().invariant_tolerances()
-        tol["load"] = self._load_tol
-        return tol
+        return {**super().invariant_tolerances(), "load": self._load_tol}
 
     def check_load_range(self) -> None:
         """Refuse a load whose expected number of walkers in contact, n_walkers x A*(zeta_max), is below
