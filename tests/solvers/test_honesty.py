@@ -151,13 +151,18 @@ def _strip_case(rng):
                 wgt = sgn * np.exp(mu * (c - p_bar))
                 m = c + mu * T
                 mass += wgt * _normal_cdf_avg(edges, m, T)
-                area += wgt * (ndtr((sigma - m) / sT) - ndtr(-m / sT))
+                area += wgt * _ndtr_diff((sigma - m) / sT, -m / sT)
         return mass, area
 
     label = f"strip kappa={kappa:.2f} a={a:.2f} mu*sqrt(kV)={mu * np.sqrt(kappa * V_MAX):.2f} ratio={ratio:.2f} "
     label += f"sigma/p_bar={sigma / p_bar:.2f}"
     kw = {"B2": B2, "B1": B1 if mu != 0.0 else None}
     return pf.FokkerPlanckProblem(PSD, p_bar=p_bar, hardness=sigma, **kw), exact, label, None
+
+
+def _ndtr_diff(a, b):
+    """Phi(a) - Phi(b) for a >= b without the cancellation of two values near 1 (upper tails where b > 0)."""
+    return ndtr(-b) - ndtr(-a) if b > 0 else ndtr(a) - ndtr(b)
 
 
 FLOOR = 1e-12
