@@ -176,3 +176,18 @@ def test_an_ignored_knob_out_of_range_is_still_an_error(method):
         pf.solve(pf.ContactProblem.reference(), method, atol=-1)
     with pytest.warns(UserWarning, match="ignores the option 'atol'"):
         pf.solve(pf.ContactProblem.reference(), method, atol=1e-8)
+
+
+def test_complex_heights_error_is_one_line():
+    """A complex height map's error printed the whole array (hundreds of characters); now its shape and first value."""
+    with pytest.raises(ValueError, match=r"heights must be real.*shape \(64, 64\), first element") as err:
+        pf.psd_from_heightmap(np.ones((64, 64)) * (1 + 1j), 1.0)
+    assert len(str(err.value)) < 200 and "\n" not in str(err.value)
+
+
+def test_one_value_text_map_reports_its_shape(tmp_path):
+    """A 1 x 1 text map was reported as "shape ()" (numpy's loadtxt drops the axes); now (1, 1)."""
+    path = tmp_path / "one.txt"
+    path.write_text("1.5\n")
+    with pytest.raises(ValueError, match=r"at least 4 points per side, got shape \(1, 1\)"):
+        pf.read_heightmap(str(path), 1.0)

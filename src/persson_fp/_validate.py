@@ -19,12 +19,20 @@ __all__ = [
 ]
 
 
+def _short(value) -> str:
+    """A value for an error message: an array by its shape and first element, never printed whole."""
+    if np.ndim(value) == 0:
+        return repr(value)
+    a = np.asarray(value)
+    return f"(an array of shape {a.shape}, first element {a.flat[0]!r})" if a.size else f"(an empty array {a.shape})"
+
+
 def _refuse_non_real(value, name: str) -> None:
     """Raise ``ValueError`` for bools, complex numbers and strings (``float()`` would take them silently)."""
     if isinstance(value, (bool, np.bool_, str, bytes)):
         raise ValueError(f"{name} must be a real number, got {value!r}")
     if np.iscomplexobj(value):
-        raise ValueError(f"{name} must be real, got a complex value {value!r}")
+        raise ValueError(f"{name} must be real, got a complex value {_short(value)}")
     dtype = getattr(value, "dtype", None)
     if dtype is not None and dtype.kind in "bOSU":
         raise ValueError(f"{name} must be a real number (or an array of them), got dtype {dtype}")

@@ -48,7 +48,7 @@ def read_heightmap(path, size, *, periodic: bool = False, **kwargs) -> MeasuredS
         else:
             with open(path) as fh:
                 first = fh.readline()
-            h = np.loadtxt(path, delimiter="," if "," in first else None, comments="#")
+            h = np.loadtxt(path, delimiter="," if "," in first else None, comments="#", ndmin=2)
     except (OSError, ValueError, EOFError, UnicodeDecodeError) as err:
         raise ValueError(f"{path}: cannot read a height map ({err or type(err).__name__})") from None
     return psd_from_heightmap(h, size, periodic=periodic, source=f"height map {os.path.basename(str(path))}", **kwargs)
