@@ -65,6 +65,25 @@ class Coefficients:
                 self._tau_cache.clear()
         elif self.clock:
             self._classify(129)  # the clock form confirmed on a dense set (its clock is a quadrature of B2 itself)
+        self._check_wall()
+
+    def _check_wall(self):
+        """Refuse a diffusion that vanishes at the wall p = 0 like p^a with a >= 0.9: there b P -> 0 does not make
+        P vanish (for b = kappa p the density at the wall is finite: the squared Bessel process of dimension 0),
+        while the collocated wall sets P(0) = 0 -- the degree would grow without bound.  Smaller exponents
+        (P ~ p^(1 - a) at the wall) are solved, their slower convergence measured by the estimate."""
+        pb = float(np.min(self.problem.p_bar))
+        b = self.envelope(pb * np.array([0.0, 1e-7, 2e-7, 1.0]))[0]
+        if not (b[3] > 0 and b[0] <= 1e-12 * b[3]):  # (B2 = 0 at the load: refused by the domain, naming it)
+            return
+        a = float(np.log2(b[2] / b[1])) if b[1] > 0 and b[2] > 0 else np.inf
+        if a >= 0.9:
+            how = f"like p^{a:.2g} there" if np.isfinite(a) else "and next to it"
+            raise ValueError(
+                f"method 'chebyshev': B2 vanishes at the wall p = 0 ({how}), so the contact-pressure "
+                "density need not vanish at the wall as the spectral method's absorbing wall P(0) = 0 assumes (for "
+                "B2 proportional to p it is finite there); use method='fv' or 'mol', whose wall flux holds for it"
+            )
 
     def _classify(self, n_z: int):
         """Sample b, c at 33 pressures and ``n_z`` magnifications; set ``drift``, ``separable``, ``clock``."""

@@ -327,11 +327,24 @@ def start_density(coef, p, p0, V0, p_wall=None):
     q0 = 0.5 * p0[:, None] * (1.0 + _GL_T)  # of [0, p0]
     shifts = np.array([-2.0, -1.0, 0.0, 1.0, 2.0]) * h
     qw = p0[:, None] + 0.5 * ((p0 if p_wall is None else p_wall) - p0)[:, None] * (1.0 + _GL_T)  # of [p0, wall]
-    pts = np.concatenate([(q[None] + shifts[:, None, None, None]).ravel(), q0.ravel(), p.ravel(), qw.ravel()])
+    # the stencils never reach below p = 0 (B1, B2 need not exist there): within 2h of the wall they are centred at
+    # 2h, the derivatives taken there (their error O(h) only where the segment passes the wall, where the density is
+    # the images' difference), b and c themselves at the point
+    wall = q < 2.0 * h
+    centre = np.maximum(q, 2.0 * h)
+    at_wall = q[wall]
+    pts = np.concatenate(
+        [(centre[None] + shifts[:, None, None, None]).ravel(), at_wall, q0.ravel(), p.ravel(), qw.ravel()]
+    )
     b_all, c_all = coef(pts)
     k = q.size * 5
     bs = b_all[:k].reshape((5,) + q.shape)
     cs = np.zeros_like(bs) if c_all is None else c_all[:k].reshape((5,) + q.shape)
+    if at_wall.size:
+        bs[2][wall] = b_all[k : k + at_wall.size]
+        if c_all is not None:
+            cs[2][wall] = c_all[k : k + at_wall.size]
+    k += at_wall.size
     b_q0 = np.maximum(b_all[k : k + q0.size].reshape(q0.shape), 1e-300)
     b_p = np.maximum(b_all[k + q0.size : k + q0.size + p.size].reshape(p.shape), 1e-300)
     b_qw = np.maximum(b_all[k + q0.size + p.size :].reshape(qw.shape), 1e-300)
