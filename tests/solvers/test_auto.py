@@ -44,6 +44,8 @@ def test_auto_choice_and_tolerance(scene):
         assert c.max_L1 <= tol and c.max_area_error <= tol
     else:
         assert est["kind"].startswith("estimate")
+        # auto's own record names the estimate the method formed (chebyshev's partners are not "half resolution")
+        assert a["kind"] == "estimate (" + sol.info["error_estimate"]["method"] + ")"
 
 
 def test_auto_moving_wall_true_error_below_tol():

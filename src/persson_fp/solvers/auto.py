@@ -69,7 +69,7 @@ def _errors(sol):
     est = sol.info["error_estimate"]
     area = max(float(np.max(est[q])) for q in ("elastic_area", "plastic_area", "noncontact_area"))
     L1 = float(np.nanmax(est["L1"])) if np.any(np.isfinite(est["L1"])) else area
-    return L1, area, "estimate (|run - half-resolution run|)"
+    return L1, area, "estimate (" + str(est.get("method", "|run - half-resolution run|")) + ")"
 
 
 def _attempt(problem, method, zeta_out, options, budget):
