@@ -75,7 +75,7 @@ class ChebyshevSolver(Solver):
     """
 
     name = "chebyshev"
-    SUPPORTS = frozenset({"general", "hardness"})
+    SUPPORTS = frozenset({"general", "hardness", "moving_wall"})
     OPTIONS = {"tol": 1e-8, "n_p": None, "V0_fraction": None, "k_domain": None, "march": None}
 
     def validate(self) -> None:
@@ -91,6 +91,12 @@ class ChebyshevSolver(Solver):
                 raise ValueError(
                     f"k_domain must lie in [5, 100], got {o['k_domain']!r}: the far wall would absorb load"
                 )
+        if pr.moving_wall:  # front-fixed, on the Magnus march (persson_fp.solvers.chebyshev_wall)
+            from persson_fp.solvers.chebyshev_wall import check_wall_problem
+
+            check_wall_problem(self)
+            self.path = "moving-wall"
+            return
         if pr.fudge.name != "none":
             raise ValueError(
                 f"method 'chebyshev' solves fudge-free problems (B2 = b(p) dV/dzeta), got fudge={pr.fudge.name!r}; "
@@ -267,6 +273,10 @@ class ChebyshevSolver(Solver):
 
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
+        if pr.moving_wall:
+            from persson_fp.solvers.chebyshev_wall import solve_moving_wall
+
+            return solve_moving_wall(self)
         tol = o["tol"]
         doms = [self._domain(tol, float(V)) for V in self.V_out]  # a far wall per station
         p_max, k = np.array([d[0] for d in doms]), doms[0][1]
