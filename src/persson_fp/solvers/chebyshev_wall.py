@@ -186,8 +186,13 @@ def _march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: float, dea
     while V < V_b:
         if deadline is not None and time.perf_counter() > deadline:
             raise TimeoutError(f"the march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
-        if steps + rejected >= MAX_STEPS:
-            raise RuntimeError(f"{MAX_STEPS} exponential steps did not reach V = {V_b:.6g} (at {V:.6g}, h = {h:.3g})")
+        tried = steps + rejected
+        done = math.log(V / V_a) / log_span  # (the share of the span in ln V behind)
+        if tried >= MAX_STEPS or (tried >= 60 and tried > 2.0 * MAX_STEPS * done):
+            raise RuntimeError(
+                f"{tried} exponential steps reached V = {V:.6g} of {V_b:.6g} (h = {h:.3g}; at most {MAX_STEPS}, "
+                "and this pace would need more than 2x that)"
+            )
         last = V + h >= V_b * (1.0 - 1e-13)
         if last:
             h = V_b - V
@@ -310,6 +315,7 @@ def solve_moving_wall(solver) -> SolverOutput:
     solver._deadline = time.perf_counter() + solver.max_time
     total = {"steps": 0, "rejected": 0, "expm": 0}
     runs = 0
+    last_time = math.inf  # the march's part of the last estimate where it was tightened after it
     while True:
         main = _run(solver, wall, n, frac, tol_t)
         grid_part = _run(solver, wall, max(8, int(round(0.75 * n))), frac, tol_t, main["nodes"])
@@ -343,6 +349,13 @@ def solve_moving_wall(solver) -> SolverOutput:
         share = tol / 3.0
         # (the partners march on the main run's steps: their differences measure the degree and the start alone)
         refined = False
+        if time_worst > share and time_worst > 0.5 * last_time:  # a tighter march did not lower it: round-off
+            raise SolverError(
+                f"chebyshev (moving wall): the march's error estimate stays at {time_worst:.2e} (tol = {tol:.3g}) "
+                "however small its steps (the round-off of the stiff exponentials at degree "
+                f"{n}); loosen tol or use method='fv'"
+            )
+        last_time = time_worst if time_worst > share else math.inf
         if time_worst > share and tol_t > 1e-3 * tol:
             tol_t *= float(np.clip(0.5 * share / time_worst, 1.0 / 16.0, 0.5))
             refined = True
