@@ -5,8 +5,8 @@ Three scenes, every time the whole ``pf.solve(...)`` call (median of repeats, fi
 A. constant hardness sigma_Y = 1.5 sqrt(V(zeta_max)) on the reference problem (no fudge and YP08): fv, mol,
    sines against the exact strip series (``pf.exact``), |dA_pl| at zeta_max;
 B. a moving yield wall sigma_Y = sigma_1 zeta^0.2, p_bar = 0.3 sigma_1, zeta to 10, a surface rough enough
-   that A_pl ~ 0.17: fv and mol against fv's own Richardson-extrapolated fine-grid value, with each run's
-   error estimate and the observed order;
+   that A_pl ~ 0.17: fv, mol and (no fudge) chebyshev against fv's own Richardson-extrapolated fine-grid value,
+   with each run's error estimate and the observed order;
 C. zeta_max = 1e16 with sigma_Y = sigma_1 zeta^0.2 (self-similar: sqrt(V) grows like sigma_Y): fv;
 D. ``method="auto"`` on scene B (no fudge) and on the README's moving-wall example (sigma_Y = 0.035 zeta^0.2 to
    zeta = 128; not in --quick) at tol = 1e-3 ... 1e-8: the whole call (median), what auto chose (or what it raised,
@@ -369,6 +369,8 @@ def main(argv=None):
         ns = (50, 100, 200) if quick else (50, 100, 200, 400, 800)
         cases = [("fv", {"n_p": n, "n_steps": n}) for n in ns]
         cases += [("mol", {"rtol": r, "n_p": 200}) for r in ((1e-7,) if quick else (1e-6, 1e-8))]
+        if fudge is None:  # the front-fixed spectral path (linear only without S)
+            cases += [("chebyshev", {"tol": t}) for t in ((1e-6,) if quick else (1e-4, 1e-6, 1e-8))]
         for method, opts in cases:
             rows.append({"scene": "moving", "fudge": fudge or "none", **run_method(pr, method, opts, reps, ref)})
         for n in () if quick else (12, 25):
