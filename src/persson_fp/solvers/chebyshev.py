@@ -17,6 +17,8 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   adaptive fourth-order commutator-free exponential (Magnus-type) steps in V, step doubling for the step size and
   a companion march at the doubled steps for the estimate (:mod:`persson_fp.solvers.engine.magnus`), tightened
   when it dominates the estimate; ``info["march"]`` counts the steps, rejected steps and exponentials.
+* ``"moving-wall"`` -- a scale-dependent hardness (no fudge factor): front-fixed in x = p / sigma_Y, the wall value
+  beta A_pl lifted, the same kind of march (:mod:`persson_fp.solvers.chebyshev_wall`, which has its own estimate).
 
 Every station starts afresh from the small-time expansion at V0 = V0_fraction x V (with the coefficients at V0/2
 on the Magnus path, the midpoint of [0, V0]; images across both walls).
