@@ -13,13 +13,19 @@ with :math:`dA_{pl}/dV = -(D\,\partial_x w + v w)(1)` (the flux out through the 
 :math:`s_V = \sigma_Y'(\zeta) / V'(\zeta)` (1 / pressure).
 
 *Discretisation.*  Chebyshev collocation in x on the sinh-mapped grid of :mod:`persson_fp.solvers.engine.collocation`
-(clustered around the start p_bar / s and at both walls).  The wall node is not a state of its own: its value is
-:math:`\beta A_{pl}`, so the state :math:`y = [w(x_1 \dots x_{n-1}), A_{pl}, A_{non}]` obeys a *linear* system
-:math:`dy/dV = A(V)\,y` whose operator depends on V through s and s_V only (every coefficient is linear in the
-state because S = 1; a fudge factor S(A) would make it nonlinear and is declined).  It is marched by the adaptive
-fourth-order commutator-free exponential steps of :mod:`persson_fp.solvers.engine.magnus` (step doubling for the
-step size, a companion march at the doubled steps for the estimate).  A constant hardness gives beta = 0: the
-absorbing strip.
+(clustered around the start p_bar / s and at both walls).  The wall value is lifted, :math:`w = u + \beta A_{pl}\,x`
+with u = 0 at both walls (``_operator``), so the state :math:`y = [u(x_1 \dots x_{n-1}), A_{pl}, A_{non}]` obeys a
+*linear* system :math:`dy/dV = A(V)\,y` whose operator depends on V through s, s_V and :math:`\beta'` only (linear
+because S = 1; a fudge factor S(A) would make it nonlinear and is declined).  It is marched by the commutator-free
+fourth-order exponential step of :mod:`persson_fp.solvers.engine.magnus` with its step control (step doubling, a
+companion march at the doubled steps for the estimate), re-implemented here (``_march``) so that the partner runs
+can replay the main run's steps.  Where beta is constant in V (sigma_Y sigma_Y' proportional to V': sigma_Y ~
+zeta^(1 - H) on a self-affine spectrum of Hurst exponent H beyond its roll-off, the scene of
+``benchmarks/plasticity.py``) the march is 4th order (measured 4.0), and where beta changes slowly nearly so; where
+beta changes fast -- the wall outrunning diffusion -- the V-dependent factor on
+the wall-flux coupling costs the exponential steps their order (measured 2: the README's moving-wall example at small
+zeta), and tight tols exceed the step limit (a :class:`~persson_fp.SolverError`; ``method="auto"`` then uses
+``"fv"``).  A constant hardness gives beta = 0: the absorbing strip.
 
 *Start.*  Every station starts afresh at V0 = V0_fraction x V from the heat kernel in p with its images across p = 0
 and the wall s(V0) (the strip's small-time solution; the wall, many widths away, is felt only through the images)
@@ -381,7 +387,11 @@ def solve_moving_wall(solver) -> SolverOutput:
     info = {
         "path": "moving-wall",
         "moving_wall": True,
-        "grid": {"n_p": n, "p_max": main["s"], "mapping": "x = p / sigma_Y(zeta) = a1-sinh map of Chebyshev points"},
+        "grid": {
+            "n_p": n,
+            "p_max": main["s"],
+            "mapping": "x = p / sigma_Y(zeta), Chebyshev points sinh-mapped around p_bar / sigma_Y(zeta0)",
+        },
         "V0_fraction": frac,
         "zeta0": solver.zeta_from_V(frac * solver.V_out),
         "runs": runs,
