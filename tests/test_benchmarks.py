@@ -230,3 +230,14 @@ def test_general_engine_quick(tmp_path):
                 assert r["L1"] == pytest.approx(hand[r["scene"]]["L1"], rel=1e-8)
             else:  # flux form with central convection against the hand CN's d^2(bP): the same order of error
                 assert 0.3 < r["L1"] / hand[r["scene"]]["L1"] < 3.0
+
+
+def test_chebyshev_wall_fuzz_quick(tmp_path):
+    """chebyshev's moving wall against fv on random problems (quick: 3): no result beyond 2x its estimate, no tol=
+    result over tol, every bad input a ValueError."""
+    rows = _module("chebyshev_wall_fuzz").main(["--quick", "--output", str(tmp_path)])
+    ran = [r[k] for r in rows for k in ("res_tol", "res_fixed") if isinstance(r.get(k), tuple)]
+    assert ran and all(ratio <= 2.0 for ratio, _ in ran)
+    assert all(r["res_tol"][1] <= r["tol"] for r in rows if isinstance(r.get("res_tol"), tuple))
+    text = (tmp_path / "chebyshev_wall_fuzz.md").read_text()
+    assert "bad inputs: 11 of 11 raised a ValueError" in text

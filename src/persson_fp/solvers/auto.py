@@ -11,6 +11,9 @@ r"""``method="auto"`` and ``tol=``: ask for an accuracy, not a method.
   (:mod:`persson_fp.solvers.chebyshev`), which meets ``tol`` by its own estimate -- exact exponentials for
   B2 = b(p) g(zeta), B1 = c(p) g(zeta), an adaptive exponential march in V otherwise; where it declines (e.g.
   its march would need more than its step limit) the problem falls through:
+* **A moving wall without a fudge factor, tol < 3e-7** (``_CHEB_WALL_TOL``): ``"chebyshev"`` on its front-fixed
+  Magnus march (:mod:`persson_fp.solvers.chebyshev_wall`), at most ``_CHEB_WALL_TIME`` seconds; where it declines or
+  runs out of time, ``"fv"`` as below (looser tols go to fv directly: there it is the faster).
 * **No closed form** (a scale-dependent hardness, general coefficients): ``"fv"`` on the front-fixed engine,
   n_p = n_steps = n from the error models measured in ``benchmarks/plasticity.py`` and ``benchmarks/auto.py``
   (estimate ~ 2e-2 / n^2 for a moving wall, ~ 50 / n^2 for general coefficients, with n cells and n steps), refined
@@ -52,6 +55,13 @@ _CELLS_PER_WIDTH = 4.0
 """The front-fixed engine's first attempt puts at least this many cells across the PDF's width sqrt(V) at the first
 station (the engine itself refuses fewer than one; with one or two a moving wall rings: a dip of -0.19 x the peak
 measured on the README's moving-wall scene at 66 cells)."""
+_CHEB_WALL_TOL = 3e-7
+"""A moving wall without a fudge factor goes to ``"chebyshev"`` first below this tol (its front-fixed Magnus march,
+:mod:`persson_fp.solvers.chebyshev_wall`): above it the second-order ``fv`` is the faster one (scene D of
+``benchmarks/plasticity.py``: fv 43 ms for 1e-6, chebyshev 0.14 s; for 1e-8 fv 3.4 s, chebyshev 1.5 s)."""
+_CHEB_WALL_TIME = 20.0
+"""Seconds the chebyshev attempt on a moving wall may take before auto falls back to fv (where its march loses order
+next to a fast-moving wall it needs many steps)."""
 _C_FV_STEPS = 0.06
 """fv TR-BDF2 (compact4, graded steps), closed-form scenes: L1 ~ _C_FV_STEPS / n_steps^2 (speed_accuracy.md)."""
 _C_FV_CELLS = 6e-6 * 200.0**4
@@ -232,6 +242,16 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, ma
             return _solve_chebyshev(problem, zeta_out, tol, budget)
         except (ValueError, SolverError) as err:
             declined = f"; method 'chebyshev' declined: {err}"
+    elif problem.moving_wall and not problem.general and problem.fudge.name == "none" and tol < _CHEB_WALL_TOL:
+        t_cheb = time.perf_counter()
+        capped = dict(budget)
+        capped["max_time"] = min(_CHEB_WALL_TIME, budget["max_time"] or math.inf)
+        try:
+            return _solve_chebyshev(problem, zeta_out, tol, capped)
+        except (ValueError, SolverError) as err:
+            declined = f"; method 'chebyshev' declined: {err}"
+            if budget["max_time"] is not None:
+                budget["max_time"] = max(budget["max_time"] - (time.perf_counter() - t_cheb), 1e-3)
     what = "a scale-dependent hardness" if problem.moving_wall else "general Fokker-Planck coefficients"
     why = (
         f"no closed form ({what}): finite volumes on the front-fixed engine, n cells and n steps from the "
@@ -250,11 +270,17 @@ def _solve_chebyshev(problem, zeta_out, tol, budget):
     t0 = time.perf_counter()
     sol = ChebyshevSolver(problem, zeta_out=zeta_out, tol=min(tol, 1e-1), **budget).run()
     L1, area, kind = _errors(sol)
+    what = (
+        "a moving yield wall, front-fixed (x = p / sigma_Y): Chebyshev collocation in x, an adaptive exponential "
+        "march in V"
+        if problem.moving_wall
+        else f"general coefficients (path {sol.info['path']!r}): Chebyshev collocation in p, exact exponentials "
+        "or an adaptive exponential march in V"
+    )
     sol.info["auto"] = {
         "method": "chebyshev",
-        "why": f"general coefficients (path {sol.info['path']!r}): Chebyshev collocation in p, exact exponentials "
-        "or an adaptive exponential march in V, degree, start and march refined until the estimate (3/4-degree "
-        "and 4 V0 partners, the march's companion) meets tol",
+        "why": f"{what}, degree, start and march refined until the estimate (3/4-degree and 4 V0 partners, the "
+        "march's companion) meets tol",
         "tol": tol,
         "L1": L1,
         "area_error": area,

@@ -169,7 +169,7 @@ class Solver:
                 }[need]
                 which = {
                     "hardness": "'fv', 'mol' or 'sines'",
-                    "moving_wall": "'fv' or 'mol'",
+                    "moving_wall": "'fv', 'mol' or (without a fudge factor) 'chebyshev'",
                     "general": "'chebyshev', 'fv' or 'mol'",
                 }
                 raise ValueError(f"method {self.name!r} does not solve {what}; use method={which[need]}")

@@ -17,6 +17,8 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   adaptive fourth-order commutator-free exponential (Magnus-type) steps in V, step doubling for the step size and
   a companion march at the doubled steps for the estimate (:mod:`persson_fp.solvers.engine.magnus`), tightened
   when it dominates the estimate; ``info["march"]`` counts the steps, rejected steps and exponentials.
+* ``"moving-wall"`` -- a scale-dependent hardness (no fudge factor): front-fixed in x = p / sigma_Y, the wall value
+  beta A_pl lifted, the same kind of march (:mod:`persson_fp.solvers.chebyshev_wall`, which has its own estimate).
 
 Every station starts afresh from the small-time expansion at V0 = V0_fraction x V (with the coefficients at V0/2
 on the Magnus path, the midpoint of [0, V0]; images across both walls).
@@ -75,7 +77,7 @@ class ChebyshevSolver(Solver):
     """
 
     name = "chebyshev"
-    SUPPORTS = frozenset({"general", "hardness"})
+    SUPPORTS = frozenset({"general", "hardness", "moving_wall"})
     OPTIONS = {"tol": 1e-8, "n_p": None, "V0_fraction": None, "k_domain": None, "march": None}
 
     def validate(self) -> None:
@@ -91,6 +93,12 @@ class ChebyshevSolver(Solver):
                 raise ValueError(
                     f"k_domain must lie in [5, 100], got {o['k_domain']!r}: the far wall would absorb load"
                 )
+        if pr.moving_wall:  # front-fixed, on the Magnus march (persson_fp.solvers.chebyshev_wall)
+            from persson_fp.solvers.chebyshev_wall import check_wall_problem
+
+            check_wall_problem(self)
+            self.path = "moving-wall"
+            return
         if pr.fudge.name != "none":
             raise ValueError(
                 f"method 'chebyshev' solves fudge-free problems (B2 = b(p) dV/dzeta), got fudge={pr.fudge.name!r}; "
@@ -267,6 +275,10 @@ class ChebyshevSolver(Solver):
 
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
+        if pr.moving_wall:
+            from persson_fp.solvers.chebyshev_wall import solve_moving_wall
+
+            return solve_moving_wall(self)
         tol = o["tol"]
         doms = [self._domain(tol, float(V)) for V in self.V_out]  # a far wall per station
         p_max, k = np.array([d[0] for d in doms]), doms[0][1]

@@ -1,0 +1,439 @@
+r"""The moving yield wall on the spectral engine: method ``"chebyshev"`` for a scale-dependent hardness.
+
+The physics (Persson, Phys. Rev. Lett. 87 (2001) 116101; Surf. Sci. Rep. 61 (2006) 201, Sec. 3) and the front
+fixing are those of :mod:`persson_fp.solvers.engine.moving_wall`: with :math:`s(V) = \sigma_Y(\zeta(V))`,
+:math:`x = p/s \in [0, 1]` and the mass density :math:`w(x, V) = s\,P(sx, V)`, the diffusion equation of the Xu et al.
+tutorial (Eq. 'E:diffusion_equ', no fudge factor: S = 1, so V is the effective variance) becomes
+
+.. math::  \partial_V w = \partial_x\big(D\,\partial_x w + v\,w\big), \qquad D = \frac{1}{2s^2}, \quad
+           v = \frac{s_V}{s}\,x, \qquad w(0) = 0, \quad w(1) = \beta A_{pl}, \quad \beta = 2 s s_V,
+
+with :math:`dA_{pl}/dV = -(D\,\partial_x w + v w)(1)` (the flux out through the wall; the load balance
+:math:`F_{el} + \sigma_Y A_{pl} = \bar p` is what fixes the wall value) and :math:`dA_{non}/dV = D\,\partial_x w(0)`.
+:math:`s_V = \sigma_Y'(\zeta) / V'(\zeta)` (1 / pressure).
+
+*Discretisation.*  Chebyshev collocation in x on the sinh-mapped grid of :mod:`persson_fp.solvers.engine.collocation`
+(clustered around the start p_bar / s and at both walls).  The wall value is lifted, :math:`w = u + \beta A_{pl}\,x`
+with u = 0 at both walls (``_operator``), so the state :math:`y = [u(x_1 \dots x_{n-1}), A_{pl}, A_{non}]` obeys a
+*linear* system :math:`dy/dV = A(V)\,y` whose operator depends on V through s, s_V and :math:`\beta'` only (linear
+because S = 1; a fudge factor S(A) would make it nonlinear and is declined).  It is marched by the commutator-free
+fourth-order exponential step of :mod:`persson_fp.solvers.engine.magnus` with its step control (step doubling, a
+companion march at the doubled steps for the estimate), re-implemented here (``_march``) so that the partner runs
+can replay the main run's steps.  Where beta is constant in V (sigma_Y sigma_Y' proportional to V': sigma_Y ~
+zeta^(1 - H) on a self-affine spectrum of Hurst exponent H beyond its roll-off, the scene of
+``benchmarks/plasticity.py``) the march is 4th order (measured 4.0), and where beta changes slowly nearly so; where
+beta changes fast -- the wall outrunning diffusion -- the V-dependent factor on
+the wall-flux coupling costs the exponential steps their order (measured 2: the README's moving-wall example at small
+zeta), and tight tols exceed the step limit (a :class:`~persson_fp.SolverError`; ``method="auto"`` then uses
+``"fv"``).  A constant hardness gives beta = 0: the absorbing strip.
+
+*Start.*  Every station starts afresh at V0 = V0_fraction x V from the heat kernel in p with its images across p = 0
+and the wall s(V0) (the strip's small-time solution; the wall, many widths away, is felt only through the images)
+and the strip's areas at (s(V0), V0) (:func:`persson_fp.theory.strip.strip_quantities`).
+
+*Error estimate* (``info["error_estimate"]``; per station and load), as for the other paths of
+:mod:`persson_fp.solvers.chebyshev`: the difference from a partner run at 3/4 of the degree, the difference from one
+started at 4 V0 divided by 4, the march's own estimate (twice the difference from its companion), the start's
+quadrature error on the grid, a round-off floor 4 eps n^2 and the residual of the area balance A_el + A_pl + A_non
+= 1 (exact in the continuum; the collocated wall fluxes meet it to the discretisation error).  With ``tol`` the
+degree is raised, V0 lowered or the march tightened, whichever part dominates, until the estimate meets it.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import scipy.linalg as sla
+
+from persson_fp.results.invariants import SolverError
+from persson_fp.solvers.base import SolverOutput
+from persson_fp.solvers.engine import collocation as co
+from persson_fp.solvers.engine.magnus import MAX_STEPS
+from persson_fp.theory.strip import strip_quantities
+
+__all__ = ["check_wall_problem", "solve_moving_wall", "N_MAX_WALL"]
+
+N_MAX_WALL = 160
+"""Largest degree the adaptive loop reaches on the moving wall (each Magnus step takes 8 exponentials)."""
+
+
+def check_wall_problem(solver) -> None:
+    """``ValueError`` unless the moving wall is one this path solves: the homogenised problem, no fudge factor."""
+    pr = solver.problem
+    if solver.opts["march"] not in (None, "magnus"):
+        got = solver.opts["march"]
+        raise ValueError(f"march must be None or 'magnus' (a moving wall is always marched), got {got!r}")
+    if pr.general:
+        raise ValueError(
+            "method 'chebyshev' solves a scale-dependent hardness (moving yield wall) for the homogenised "
+            "ContactProblem only, not with general Fokker-Planck coefficients; use method='fv' or 'mol'"
+        )
+    if pr.fudge.name != "none":
+        raise ValueError(
+            "method 'chebyshev' solves a scale-dependent hardness (moving yield wall) only without a fudge factor "
+            f"(S = 1, where the front-fixed equation is linear), got fudge={pr.fudge.name!r}; use method='fv' or 'mol'"
+        )
+    if not float(pr.dV_dzeta(float(pr.zeta_max))) > 0:
+        raise ValueError("method 'chebyshev' marches in V and needs dV/dzeta > 0 at zeta_max; use method='fv'")
+
+
+_DU = 1e-3
+"""The step in ln zeta of the 5-point differences that give d beta / dV (truncation ~ _DU^4, round-off ~ eps / _DU)."""
+_ONE_SIDED = np.array([-25.0, 48.0, -36.0, 16.0, -3.0]) / 12.0
+_STENCILS = {  # (offsets in _DU, weights): central, and one-sided where the stencil would straddle the roll-off kink
+    0: (np.array([-2.0, -1.0, 1.0, 2.0]), np.array([1.0, -8.0, 8.0, -1.0]) / 12.0),
+    1: (np.arange(5.0), _ONE_SIDED),
+    -1: (-np.arange(5.0), -_ONE_SIDED),
+}
+
+
+class _Wall:
+    """s(V) = sigma_Y(zeta(V)) (pressure), s_V = d sigma_Y / dV (1 / pressure) and d beta / dV, cached per V
+    (beta = 2 s s_V; its derivative by 5-point differences in ln zeta, one-sided next to the spectrum's roll-off
+    zeta_r, where dV/dzeta has a kink)."""
+
+    def __init__(self, problem):
+        self.problem = problem
+        self._cache: dict = {}
+        zr = getattr(problem.psd, "zeta_r", None)
+        self.zeta_kink = float(zr) if zr is not None and 1.0 < zr < problem.zeta_max else None
+
+    def _beta(self, z):
+        pr = self.problem
+        return 2.0 * pr.hardness.sigma(z) * pr.hardness.dsigma_dzeta(z) / pr.dV_dzeta(z)
+
+    def __call__(self, V: float):
+        hit = self._cache.get(V)
+        if hit is None:
+            pr = self.problem
+            z = np.atleast_1d(pr.psd.zeta_of_V(np.array([float(V)]), pr.E_star))
+            dV = float(pr.dV_dzeta(z)[0])
+            if not dV > 0:
+                raise ValueError(
+                    f"method 'chebyshev': dV/dzeta vanishes at zeta = {float(z[0]):.6g} (V is no clock there for "
+                    "the moving wall); use method='fv'"
+                )
+            s = float(pr.hardness.sigma(z)[0])
+            u = math.log(float(z[0]))
+            side = 1 if u < 2.5 * _DU else (-1 if u > math.log(pr.zeta_max) - 2.5 * _DU else 0)
+            if self.zeta_kink is not None and abs(u - math.log(self.zeta_kink)) < 2.5 * _DU:
+                side = 1 if u >= math.log(self.zeta_kink) else -1
+            off, wt = _STENCILS[side]
+            dbeta_du = float(wt @ self._beta(np.exp(u + off * _DU))) / _DU
+            hit = self._cache[V] = (s, float(pr.hardness.dsigma_dzeta(z)[0]) / dV, dbeta_du / (float(z[0]) * dV))
+        return hit
+
+
+def _operator(grid, s: float, sV: float, dbeta: float):
+    r"""A(V) of the state [u at the interior nodes, A_pl, A_non] (n_loads, n + 1, n + 1), the wall value lifted:
+    :math:`w = u + \beta A_{pl}\,x` with u = 0 at both walls, so that no V-dependent factor multiplies a stiff
+    wall row (with the wall node :math:`\beta A_{pl}` in the collocated rows the march stalled at steps of 1e-5 V
+    where beta changes fast):
+
+    .. math::  \partial_V u = \mathcal L u + (2a\beta - \beta' + \beta^2 (D + a))\,x A_{pl}
+               + \beta x\,D\,\partial_x u(1), \qquad \dot A_{pl} = -D\,\partial_x u(1) - \beta (D + a) A_{pl},
+               \qquad \dot A_{non} = D\,\partial_x u(0) + D\beta A_{pl},
+
+    :math:`\mathcal L u = D u_{xx} + a (u + x u_x)`, D = 1 / (2 s^2), a = s_V / s (so that L x = 2 a x)."""
+    D, a, beta = 0.5 / (s * s), sV / s, 2.0 * s * sV
+    x = grid.p  # (the grid is in x)
+    L = D * grid.D2 + a * (np.eye(x.shape[1])[None] + x[:, :, None] * grid.D1)
+    nl, m = x.shape[0], x.shape[1] - 2
+    xi = x[:, 1:-1]
+    flux1 = D * grid.D1[:, -1, 1:-1]  # D u_x(1)
+    M = np.zeros((nl, m + 2, m + 2))
+    M[:, :m, :m] = L[:, 1:-1, 1:-1] + beta * xi[:, :, None] * flux1[:, None, :]
+    M[:, :m, m] = (2.0 * a * beta - dbeta + beta * beta * (D + a)) * xi
+    M[:, m, :m] = -flux1
+    M[:, m, m] = -beta * (D + a)
+    M[:, m + 1, :m] = D * grid.D1[:, 0, 1:-1]
+    M[:, m + 1, m] = D * beta
+    return M
+
+
+_C = math.sqrt(3.0) / 6.0
+_B1, _B2 = 0.25 + _C, 0.25 - _C
+
+
+def _step(A_of, V, h, y):
+    """One commutator-free fourth-order exponential step (that of :mod:`persson_fp.solvers.engine.magnus`)."""
+    A1, A2 = A_of(V + (0.5 - _C) * h), A_of(V + (0.5 + _C) * h)
+    y = np.einsum("lij,lj->li", sla.expm(h * (_B1 * A1 + _B2 * A2)), y)
+    return np.einsum("lij,lj->li", sla.expm(h * (_B2 * A1 + _B1 * A2)), y)
+
+
+def _march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: float, deadline=None, nodes=None):
+    """March dy/dV = A(V) y from V_a to V_b: (y, estimate (n_loads,), stats, the accepted nodes).
+
+    Adaptive as :func:`persson_fp.solvers.engine.magnus.magnus_march` (step doubling, the local estimate per unit
+    ln V held to tol / ln(V_b / V_a), the half-step result kept, a companion march at the single steps whose
+    difference, doubled, is the estimate) -- or, given ``nodes``, on those steps (those of the main run beyond
+    V_a): the partner runs then share the main run's steps, so that their differences from it measure the degree
+    and the start and not the steps, which the companion measures.  Where the wall moves fast against diffusion
+    (beta = 2 s s_V changing with V multiplies the wall-flux coupling) the march loses order (measured 2 on the
+    README's example, 4 where beta is constant); the companion's estimate holds for any order >= 1."""
+    log_span = math.log(V_b / V_a)
+    V, y = float(V_a), np.array(y0, dtype=float)
+    z = y.copy()
+    steps = rejected = 0
+    accepted = [V]
+    if nodes is not None:
+        for Vn in [v for v in nodes if v > V_a * (1.0 + 1e-12)]:
+            h = Vn - V
+            z = _step(A_of, V, h, z)
+            y = _step(A_of, V + 0.5 * h, 0.5 * h, _step(A_of, V, 0.5 * h, y))
+            V = Vn
+            steps += 1
+        return y, 2.0 * norm(y - z), {"steps": steps, "rejected": 0, "expm": 6 * steps}, nodes
+    h = min((V_b - V_a) / 8.0, 2.0 * V_a)
+    noise, last_reject = floor, math.inf
+    while V < V_b:
+        if deadline is not None and time.perf_counter() > deadline:
+            raise TimeoutError(f"the march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
+        tried = steps + rejected
+        done = math.log(V / V_a) / log_span  # (the share of the span in ln V behind)
+        if tried >= MAX_STEPS or (tried >= 60 and tried > 2.0 * MAX_STEPS * done):
+            raise RuntimeError(
+                f"{tried} exponential steps reached V = {V:.6g} of {V_b:.6g} (h = {h:.3g}; at most {MAX_STEPS}, "
+                "and this pace would need more than 2x that)"
+            )
+        last = V + h >= V_b * (1.0 - 1e-13)
+        if last:
+            h = V_b - V
+        full = _step(A_of, V, h, y)
+        two = _step(A_of, V + 0.5 * h, 0.5 * h, _step(A_of, V, 0.5 * h, y))
+        worst = float(np.max(norm(two - full))) / 15.0
+        if worst >= 0.5 * last_reject and worst <= 100.0 * floor:  # a smaller step did not help: round-off
+            noise = max(noise, 2.0 * worst)
+        target = max(tol * math.log1p(h / V) / log_span, noise)
+        if worst <= target:
+            last_reject = math.inf
+            z = full if steps == 0 else _step(A_of, V, h, z)
+            y, V = two, (V_b if last else V + h)
+            accepted.append(V)
+            steps += 1
+            h *= 4.0 if worst == 0.0 else float(np.clip(0.9 * (target / worst) ** 0.25, 0.2, 4.0))
+        else:
+            rejected += 1
+            last_reject = worst
+            h *= float(np.clip(0.9 * (target / worst) ** 0.25, 0.05, 0.5))
+    stats = {"steps": steps, "rejected": rejected, "expm": 6 * (steps + rejected) + 2 * max(steps - 1, 0)}
+    return y, 2.0 * norm(y - z), stats, accepted
+
+
+def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
+    """One run at degree n and start fraction ``frac`` (on the steps ``nodes[k]`` per station if given): a dict of
+    per-station arrays, the grids and the accepted steps."""
+    pr = solver.problem
+    pb = pr.p_bar.astype(float)
+    n_st, nl = solver.V_out.size, pb.size
+    shape = (n_st, nl)
+    out = {key: np.zeros(shape) for key in ("A_el", "A_pl", "A_non", "F_el", "t_err", "unresolved", "beta")}
+    out["W"], out["grids"], out["s"], out["nodes"] = np.zeros((n_st, nl, n + 1)), [], np.zeros(n_st), []
+    stats = {"steps": 0, "rejected": 0, "expm": 0}
+    floor = 4.0 * np.finfo(float).eps * n * n
+    for k, V in enumerate(solver.V_out):
+        V = float(V)
+        V0 = frac * V
+        s0 = wall(V0)[0]
+        width = math.sqrt(V0)
+        grid = co.chebyshev_grid(n, 1.0, pb / s0, np.full(nl, 3.0 * width / s0))
+        wall_p = np.full(nl, s0)
+        w0 = s0 * co.start_density(lambda q: (np.ones(np.shape(q)), None), s0 * grid.p, pb, V0, p_wall=wall_p)
+        w0[:, 0] = w0[:, -1] = 0.0
+        q = strip_quantities(pb, s0, V0)
+        # the start's quadrature on the grid against the strip's exact elastic area
+        out["unresolved"][k] = np.abs(np.sum(w0 * grid.w, axis=-1) - q["elastic_area"])
+        m = n - 1
+        wts = grid.w[:, 1:-1]
+
+        def A_of(Vq, grid=grid):
+            return _operator(grid, *wall(Vq))
+
+        s_end, sV_end, _ = wall(V)
+        lift = 1.0 + s_end * sV_end  # |A_pl| and the lift beta A_pl x (its L1: beta |A_pl| / 2) at the station
+
+        def norm(d, wts=wts, m=m, lift=lift):
+            return np.sum(np.abs(d[:, :m]) * wts, axis=-1) + np.abs(d[:, m]) * lift
+
+        y0 = np.concatenate([w0[:, 1:-1], q["plastic_area"][:, None] * np.ones((nl, 1)), np.zeros((nl, 1))], axis=1)
+        try:
+            y, t_err, st, used = _march(
+                A_of, y0, V0, V, tol_t, norm, floor, solver._deadline, None if nodes is None else nodes[k]
+            )
+        except TimeoutError as err:
+            raise SolverError(
+                f"chebyshev (moving wall): max_time = {solver.max_time:.3g} s exceeded ({err}); loosen tol, or pass "
+                "a larger max_time (seconds)"
+            ) from None
+        except RuntimeError as err:
+            raise SolverError(f"chebyshev (moving wall): {err}; loosen tol or use method='fv'") from None
+        for key in stats:
+            stats[key] += st[key]
+        s, sV, _ = wall(V)
+        beta = 2.0 * s * sV
+        w = np.zeros((nl, n + 1))
+        w[:, 1:-1], w[:, -1] = y[:, :m] + beta * y[:, m : m + 1] * grid.p[:, 1:-1], beta * y[:, m]
+        out["W"][k], out["s"][k], out["beta"][k] = w, s, beta
+        out["A_el"][k] = np.sum(w * grid.w, axis=-1)
+        out["F_el"][k] = s * np.sum(w * grid.w * grid.p, axis=-1)
+        out["A_pl"][k] = y[:, m]
+        out["A_non"][k] = q["noncontact_area"] + y[:, m + 1]
+        out["t_err"][k] = t_err
+        out["grids"].append(grid)
+        out["nodes"].append(used)
+    out["stats"] = stats
+    return out
+
+
+def _compare(main, other, p_bar):
+    """(L1 of w, i.e. of P in p; |dA_el|; |dA_pl|; |dA_non|; |dF| / p_bar) per station and load."""
+    L1 = np.stack(
+        [
+            np.sum(np.abs(main["W"][k] - co.interpolate(g2, other["W"][k], g.p)) * g.w, axis=-1)
+            for k, (g, g2) in enumerate(zip(main["grids"], other["grids"]))
+        ]
+    )
+    d = {q: np.abs(main[q] - other[q]) for q in ("A_el", "A_pl", "A_non")}
+    return L1, d["A_el"], d["A_pl"], d["A_non"], np.abs(main["F_el"] - other["F_el"]) / p_bar
+
+
+def _wall_fraction(solver, tol: float) -> float:
+    """The largest V0 / V(zeta_max) at which the start, and its partner at 4 V0, are k widths sqrt(V0) below the
+    wall with exp(-k^2 / 2) < 1e-3 tol at the partner (the image start knows nothing of the wall's motion and of the
+    plastic area it has taken before V0)."""
+    pr = solver.problem
+    gap = float(np.min(pr.sigma_Y(1.0) - pr.p_bar))  # the wall only moves out: sigma_Y(1) is its closest
+    k = 2.0 * math.sqrt(2.0 * math.log(1e3 / tol))
+    return max((gap / k) ** 2 / float(np.max(solver.V_out)), 1e-12)
+
+
+def solve_moving_wall(solver) -> SolverOutput:
+    """Solve ``solver.problem`` (a moving wall, no fudge factor) to ``solver.opts["tol"]`` (module docstring)."""
+    o, pr = solver.opts, solver.problem
+    tol = o["tol"]
+    wall = _Wall(pr)
+    frac = o["V0_fraction"] or min(float(np.clip(0.3 * math.sqrt(tol), 3e-5, 1e-2)), _wall_fraction(solver, tol))
+    n = o["n_p"] or int(np.clip(8 + 8 * math.log10(1.0 / tol), 24, N_MAX_WALL))
+    tol_t = tol / 4.0
+    solver._deadline = time.perf_counter() + solver.max_time
+    total = {"steps": 0, "rejected": 0, "expm": 0}
+    runs = 0
+    last_time = math.inf  # the march's part of the last estimate where it was tightened after it
+    while True:
+        main = _run(solver, wall, n, frac, tol_t)
+        grid_part = _run(solver, wall, max(8, int(round(0.75 * n))), frac, tol_t, main["nodes"])
+        start_part = _run(solver, wall, n, 4.0 * frac, tol_t, main["nodes"])
+        runs += 3
+        for r in (main, grid_part, start_part):
+            for key in total:
+                total[key] += r["stats"][key]
+        L1_g, dA_g, dP_g, dN_g, dF_g = _compare(main, grid_part, pr.p_bar)
+        L1_s, dA_s, dP_s, dN_s, dF_s = _compare(main, start_part, pr.p_bar)
+        floor = 4.0 * np.finfo(float).eps * n * n
+        balance = np.abs(main["A_el"] + main["A_pl"] + main["A_non"] - 1.0)
+        t_err, unresolved = main["t_err"], main["unresolved"]
+        common = floor + t_err + unresolved + balance
+        est = {
+            "L1": L1_g + L1_s / 4.0 + common,
+            "elastic_area": dA_g + dA_s / 4.0 + common,
+            "plastic_area": dP_g + dP_s / 4.0 + common,
+            "noncontact_area": dN_g + dN_s / 4.0 + common,
+            "load": dF_g + dF_s / 4.0 + common,
+        }
+        est["elastic_area"] = np.maximum(est["elastic_area"], est["L1"])  # |dA_el| <= int |dP| dp
+        worst = max(float(np.max(est[q])) for q in ("L1", "elastic_area", "plastic_area", "noncontact_area"))
+        if o["n_p"] is not None or worst <= tol:
+            break
+        # refine every part above a third of tol at once: the march (its estimate ~ 2 x its tol, measured), the
+        # start (earlier V0, a few more nodes for the narrower start) and the degree
+        grid_worst = max(float(np.max(v)) for v in (L1_g, dA_g, dP_g, dN_g, unresolved))
+        start_worst = max(float(np.max(v)) for v in (L1_s, dA_s, dP_s, dN_s)) / 4.0
+        time_worst = float(np.max(t_err + balance))  # (the area balance is broken by the march, mostly)
+        share = tol / 3.0
+        # (the partners march on the main run's steps: their differences measure the degree and the start alone)
+        refined = False
+        if time_worst > share and time_worst > 0.5 * last_time:  # a tighter march did not lower it: round-off
+            raise SolverError(
+                f"chebyshev (moving wall): the march's error estimate stays at {time_worst:.2e} (tol = {tol:.3g}) "
+                "however small its steps (the round-off of the stiff exponentials at degree "
+                f"{n}); loosen tol or use method='fv'"
+            )
+        last_time = time_worst if time_worst > share else math.inf
+        if time_worst > share and tol_t > 1e-3 * tol:
+            tol_t *= float(np.clip(0.5 * share / time_worst, 1.0 / 16.0, 0.5))
+            refined = True
+        if start_worst > share and frac > 1e-6:
+            frac /= 4.0
+            n = int(math.ceil(1.15 * n))
+            refined = True
+        if not refined and time_worst >= grid_worst and tol_t > 1e-3 * tol:  # no part alone exceeds its share
+            tol_t /= 4.0
+        elif grid_worst > share or not refined:
+            n = int(math.ceil(1.3 * n))
+        if n > N_MAX_WALL:
+            raise SolverError(
+                f"chebyshev (moving wall): the error estimate {worst:.3e} exceeds tol = {tol:.3g} at degree "
+                f"{N_MAX_WALL}; loosen tol or use method='fv'"
+            )
+        if time.perf_counter() > solver._deadline:
+            raise SolverError(
+                f"chebyshev (moving wall): max_time = {solver.max_time:.3g} s exceeded after {runs} runs (degree {n}); "
+                "loosen tol, or pass a larger max_time (seconds)"
+            )
+    load = main["F_el"] + main["s"][:, None] * main["A_pl"]
+    info = {
+        "path": "moving-wall",
+        "moving_wall": True,
+        "grid": {
+            "n_p": n,
+            "p_max": main["s"],
+            "mapping": "x = p / sigma_Y(zeta), Chebyshev points sinh-mapped around p_bar / sigma_Y(zeta0)",
+        },
+        "V0_fraction": frac,
+        "zeta0": solver.zeta_from_V(frac * solver.V_out),
+        "runs": runs,
+        "error_estimate": {
+            **est,
+            "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + |march - companion march at double "
+            "steps| x 2 + the start's quadrature error + 4 eps n^2 + |A_el + A_pl + A_non - 1|",
+            "parts": {"time": t_err, "area_balance": balance, "start": unresolved},
+        },
+        "area_residual": float(np.max(balance)),
+        "load_residual": float(np.max(np.abs(load - pr.p_bar) / pr.p_bar)),
+        "march": {**main["stats"], "tol": tol_t, "all_runs": total},
+        "wall_value": main["beta"] * main["A_pl"],
+    }
+    p, P0, weights = _output(pr, main, n)
+    peak = np.max(P0, axis=-1, keepdims=True)
+    ripple = (P0 < 0) & (P0 > -1e-6 * peak)
+    P0 = np.where(ripple, 0.0, P0)
+    info["ripple_zeroed"] = int(np.count_nonzero(ripple))
+    return SolverOutput(
+        p=p,
+        P0=P0,
+        weights=weights,
+        kind="point",
+        info=info,
+        contact_area=main["A_el"],
+        load=main["F_el"],
+        plastic_area=main["A_pl"],
+    )
+
+
+def _output(pr, main, n):
+    """(p (n_zeta, m), P0 (n_zeta, n_loads, m), weights (n_zeta, m)): the grid stretches with sigma_Y (P = w / s)."""
+    s = main["s"]
+    if pr.n_loads == 1:  # each station's own nodes
+        x = np.stack([g.p[0] for g in main["grids"]])
+        wx = np.stack([g.w[0] for g in main["grids"]])
+        W = main["W"]
+    else:  # a common plain Chebyshev grid of twice the degree in x
+        common = co.chebyshev_grid(2 * n, 1.0, np.array([0.5]), np.array([1e6]))
+        x = np.broadcast_to(common.p[0], (s.size, common.p.shape[1]))
+        wx = np.broadcast_to(common.w[0], x.shape)
+        q = np.broadcast_to(common.p[0], (pr.n_loads, common.p.shape[1]))
+        W = np.stack([co.interpolate(g, main["W"][k], q) for k, g in enumerate(main["grids"])])
+    return s[:, None] * x, W / s[:, None, None], s[:, None] * wx
