@@ -104,8 +104,9 @@ def magnus_march(
     ------
     MarchTooLong
         A ``RuntimeError``: more than :data:`MAX_STEPS` steps (the operator changes too fast for ``tol``), or
-        forecast to need more than ``PREDICT_MARGIN`` times that after ``PREDICT_AFTER`` accepted steps (the steps
-        so far plus the rest of the span at the present step size): a refusal within ~1 s instead of 10-20 s.
+        forecast to need more than ``PREDICT_MARGIN`` times that after ``PREDICT_AFTER`` accepted steps and a tenth
+        of the span (the smaller of two extrapolations: at the present step size and at the mean rate per unit V so
+        far): a refusal within ~1 s.
     """
     span = float(V_b - V_a)
     log_span = math.log(V_b / V_a) if V_a > 0 else 0.0
@@ -140,10 +141,13 @@ def magnus_march(
             y, V = two, (V_b if last else V + h)
             steps += 1
             h *= 4.0 if worst == 0.0 else float(np.clip(0.9 * (target / worst) ** 0.25, 0.2, 4.0))
-            # the forecast: the steps so far plus the rest at the present step size (the steps shrink where the
-            # operator changes faster, at large V: a lower bound there)
-            forecast = steps + rejected + (V_b - V) / h
-            if steps >= PREDICT_AFTER and V < V_b and forecast > PREDICT_MARGIN * MAX_STEPS:
+            # the forecast, once a tenth of the span is done (before, the steps grow with V, uniform in ln V): the
+            # smaller of the steps so far plus the rest at the present step size and the steps so far at their mean
+            # rate per unit V (the first over-predicts where h dips for a while, the second where the first steps
+            # were the small ones; both under-predict where h keeps shrinking)
+            forecast = min(steps + rejected + (V_b - V) / h, (steps + rejected) * span / (V - V_a))
+            early = steps >= PREDICT_AFTER and V - V_a >= 0.1 * span and V < V_b
+            if early and forecast > PREDICT_MARGIN * MAX_STEPS:
                 raise MarchTooLong(
                     f"the march is forecast to need ~{forecast:.0f} exponential steps (over {MAX_STEPS}) to reach "
                     f"V = {V_b:.6g}: after {steps} steps it is at {V:.6g} with h = {h:.3g}",
