@@ -25,7 +25,7 @@ Error estimate (``info["error_estimate"]``, per station and load; an area's is n
 which bounds it): the differences from a partner run at 3/4 of the degree (the grid) and from one started at 4 V0
 divided by 4 (the start; its error scales as V0^2, so the true ratio is 15), plus twice the mass lost at the far
 wall (not with a hardness: there it is A_pl), a round-off floor eps ||L dV||_1 (n / 400)^2, not below 4 eps n^2
-(:func:`~persson_fp.solvers.engine.collocation.roundoff_floor`: the dense exponential's backward error on the
+(``collocation.roundoff_floor``: the dense exponential's backward error on the
 clustered grid, whose closest nodes make ||L|| ~ n^4 / dp_min^2; measured 0.004-0.31 of eps ||L dV||_1 at
 n = 100-400, 1.6e-9 to 4e-8 at n = 400, where the partners alone had fallen 1.0-1.6x below the true error) and, on
 the Magnus path, the march's own estimate (the difference from its companion at doubled steps).  With ``tol`` the
@@ -34,7 +34,7 @@ tol below the floor is refused before any run (the floor is computed from the op
 run whose floor would exceed tol or once a higher degree raised an estimate the floor dominates: a
 :class:`~persson_fp.SolverError` naming the best reachable accuracy (tol = 1e-12 in ~0.1 s; it took seconds up
 to degree 400 before).  A march forecast to exceed its step limit is refused within ~1 s
-(:class:`~persson_fp.solvers.engine.magnus.MarchTooLong`, naming the tol that fits).  Negative ripples of the
+(``magnus.MarchTooLong``, naming the tol that fits).  Negative ripples of the
 polynomial below 1e-6 of the peak (in the tails and next to the walls, within the estimate) are set to 0 in P0;
 A*, A_pl and the load are the quadratures and wall fluxes of the polynomial itself.
 """
