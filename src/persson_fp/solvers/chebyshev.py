@@ -26,12 +26,19 @@ on the Magnus path, the midpoint of [0, V0]; images across both walls).
 Error estimate (``info["error_estimate"]``, per station and load; an area's is never below the L1 estimate,
 which bounds it): the differences from a partner run at 3/4 of the degree (the grid) and from one started at 4 V0
 divided by 4 (the start; its error scales as V0^2, so the true ratio is 15), plus twice the mass lost at the far
-wall (not with a hardness: there it is A_pl), a round-off floor 4 eps n^2 (the error of the dense exponential
-grows with the degree; measured ~1e-11 at n = 250) and, on the Magnus path, the march's own estimate (the
-difference from its companion at doubled steps).  With ``tol`` the degree is raised, V0 lowered or the march
-tightened -- whichever part dominates -- until the estimate meets it.  Negative ripples of the polynomial below
-1e-6 of the peak (in the tails and next to the walls, within the estimate) are set to 0 in P0; A*, A_pl and the
-load are the quadratures and wall fluxes of the polynomial itself.
+wall (not with a hardness: there it is A_pl), a round-off floor eps ||L dV||_1 (n / 400)^2, not below 4 eps n^2
+(``collocation.roundoff_floor``: the dense exponential's backward error on the
+clustered grid, whose closest nodes make ||L|| ~ n^4 / dp_min^2; measured 0.004-0.31 of eps ||L dV||_1 at
+n = 100-400, 1.6e-9 to 4e-8 at n = 400, where the partners alone had fallen 1.0-1.6x below the true error) and, on
+the Magnus path, the march's own estimate (the difference from its companion at doubled steps).  With ``tol`` the
+degree is raised, V0 lowered or the march tightened -- whichever part dominates -- until the estimate meets it.  A
+tol below the floor is refused before any run (the floor is computed from the operators alone), and again before a
+run whose floor would exceed tol or once a higher degree raised an estimate the floor dominates: a
+:class:`~persson_fp.SolverError` naming the best reachable accuracy (tol = 1e-12 in ~0.1 s; it took seconds up
+to degree 400 before).  A march forecast to exceed its step limit is refused within ~1 s
+(``magnus.MarchTooLong``, naming the tol that fits).  Negative ripples of the
+polynomial below 1e-6 of the peak (in the tails and next to the walls, within the estimate) are set to 0 in P0;
+A*, A_pl and the load are the quadratures and wall fluxes of the polynomial itself.
 """
 
 from __future__ import annotations
@@ -158,7 +165,7 @@ class ChebyshevSolver(Solver):
         grids, out = [], None
         shape = (self.V_out.size, pb.size)
         far, balance, t_err, law = np.zeros(shape), np.zeros(shape), np.zeros(shape), np.zeros(shape)
-        unresolved = np.zeros(shape)
+        unresolved, roundoff = np.zeros(shape), np.zeros(shape)
         stats = {"steps": 0, "rejected": 0, "expm": 0}
         floor = 4.0 * np.finfo(float).eps * n * n
         path = self.path
@@ -198,6 +205,7 @@ class ChebyshevSolver(Solver):
                 L = co.generator(grid, b_n, c_n)
                 span = float(V) - V0 if path == "exponential" else cf.tau(V0, float(V))
                 P[:, 1:-1], I = co.propagate_with_integral(L, P[:, 1:-1], span)
+                roundoff[k] = co.roundoff_floor(L, span, n)
                 out0, out_far = co.wall_losses(grid, b_n, c_n, I)
                 moment = 0.0 if c_n is None else np.sum((grid.w * c_n)[:, 1:-1] * I, axis=-1)
             else:
@@ -218,9 +226,12 @@ class ChebyshevSolver(Solver):
                 except RuntimeError as err:
                     from persson_fp.results.invariants import SolverError
 
-                    raise SolverError(f"chebyshev: {err}; loosen tol or use method='fv'") from None
+                    reach = getattr(err, "reachable", None)  # (the march's tol that fits in its steps)
+                    hint = "" if reach is None else f" to about {reach * self.opts['tol'] / tol_t:.1e}"
+                    raise SolverError(f"chebyshev: {err}; loosen tol{hint} or use method='fv'") from None
                 for key in stats:
                     stats[key] += st[key]
+                roundoff[k] = co.roundoff_floor(np.maximum(np.abs(A_of(V0)), np.abs(A_of(float(V)))), V - V0, n)
                 P[:, 1:-1], out0, out_far, moment = y[:, :m], y[:, m], y[:, m + 1], y[:, m + 2]
             far[k] = np.maximum(out_far, 0.0)
             # the first-moment law: the load the solution must carry (with a hardness: elastic + sigma_Y A_pl)
@@ -231,7 +242,7 @@ class ChebyshevSolver(Solver):
             out[k] = P
             grids.append(grid)
         self._far, self._balance, self._time_err, self._stats, self._law = far, balance, t_err, stats, law
-        self._unresolved = unresolved
+        self._unresolved, self._roundoff = unresolved, roundoff
         return grids, out
 
     def _stats_of(self, grids, P, far):
@@ -254,7 +265,7 @@ class ChebyshevSolver(Solver):
         """The run and its two partners (3/4 degree, start at 4 V0); ``_stats`` of the run, ``_all`` of the three."""
         main = (*self._run(n, frac, p_max, tol_t), self._far)
         far, balance, t_err, stats, law = self._far, self._balance, self._time_err, self._stats, self._law
-        unresolved = self._unresolved
+        unresolved, roundoff = self._unresolved, self._roundoff
         all_stats = dict(stats)
         grid_part = (*self._run(max(8, int(round(0.75 * n))), frac, p_max, tol_t), self._far)
         all_stats = {key: all_stats[key] + self._stats[key] for key in all_stats}
@@ -262,8 +273,56 @@ class ChebyshevSolver(Solver):
         self._all = {key: all_stats[key] + self._stats[key] for key in all_stats}
         self._law_spread = np.abs(law - self._law)
         self._far, self._balance, self._time_err, self._stats, self._law = far, balance, t_err, stats, law
-        self._unresolved = unresolved
+        self._unresolved, self._roundoff = unresolved, roundoff
         return main, grid_part, start_part
+
+    def _floor_at(self, n, frac, p_max):
+        """The largest round-off floor (:func:`co.roundoff_floor`, not below 4 eps n^2) a run at degree n and start
+        fraction ``frac`` would report, over stations and loads -- from the operators alone, before any run
+        (milliseconds: the grids and generators of :meth:`_run` without their exponentials or march)."""
+        cf, pb, worst = self._cf, self.problem.p_bar.astype(float), 4.0 * np.finfo(float).eps * n * n
+        for k, V in enumerate(self.V_out):
+            V0 = frac * float(V)
+            V_start, t0 = (None, V0) if self.path == "exponential" else (0.5 * V0, V0)
+            if self.path == "clock":
+                V_start, t0 = None, cf.tau(0.0, V0)
+            b_at = cf.at(pb, V_start)[0]
+            if np.any(b_at <= 0):
+                return worst  # (the run names it)
+            grid = co.chebyshev_grid(n, p_max[k], pb, 3.0 * np.sqrt(b_at * t0))
+            if self.path != "magnus":
+                span = float(V) - V0 if self.path == "exponential" else cf.tau(V0, float(V))
+                L = co.generator(grid, *cf.at(grid.p))
+            else:
+                span = float(V) - V0
+                L = np.maximum(*(np.abs(co.generator(grid, *cf.at(grid.p, Vq))) for Vq in (V0, float(V))))
+            worst = max(worst, float(np.max(co.roundoff_floor(L, span, n))))
+        return worst
+
+    def _start_of(self, tol):
+        """(first degree, start fraction) of the adaptive loop for ``tol``."""
+        frac = self.opts["V0_fraction"] or float(np.clip(0.3 * math.sqrt(tol), 3e-5, 1e-2))
+        return int(np.clip(8 + 8 * math.log10(1.0 / tol), 24, N_MAX)), frac
+
+    def _unreachable(self, tol, n, floor, best, p_max):
+        """The SolverError of a tol below the round-off floor, naming the floor and the best reachable accuracy: the
+        smallest tol (half-decade steps) whose floor at 1.5x its first degree is below half of it -- the loop
+        typically ends at 1.2-1.7x its first degree (measured on the drift, clock and homogenised cases)."""
+        from persson_fp.results.invariants import SolverError
+
+        reach = tol
+        while reach < 0.1:
+            reach *= math.sqrt(10.0)
+            n1, frac1 = self._start_of(reach)
+            if self._floor_at(min(int(1.5 * n1), N_MAX), frac1, p_max) <= 0.5 * reach:
+                break
+        done = "" if best is None else f"; the best estimate reached is {best:.2e}"
+        raise SolverError(
+            f"chebyshev: tol = {tol:.3g} is below what the dense exponential can reach here: its round-off floor at "
+            f"degree {n} is {floor:.2e} (it grows ~n^6 with the degree; a coarser degree leaves a larger "
+            f"discretisation error){done}; the best reachable accuracy is about {reach:.1e} -- loosen tol to it or "
+            "use method='fv'"
+        ) from None
 
     def _out_of_time(self, where: str):
         from persson_fp.results.invariants import SolverError
@@ -282,12 +341,15 @@ class ChebyshevSolver(Solver):
         tol = o["tol"]
         doms = [self._domain(tol, float(V)) for V in self.V_out]  # a far wall per station
         p_max, k = np.array([d[0] for d in doms]), doms[0][1]
-        frac = o["V0_fraction"] or float(np.clip(0.3 * math.sqrt(tol), 3e-5, 1e-2))
-        n = o["n_p"] or int(np.clip(8 + 8 * math.log10(1.0 / tol), 24, N_MAX))
+        n, frac = self._start_of(tol)
+        n = o["n_p"] or n
         tol_t = TIME_SHARE * tol
         runs, hard = 0, self._sigma is not None
         total = {"steps": 0, "rejected": 0, "expm": 0}
         self._deadline = time.perf_counter() + self.max_time
+        best = None  # the smallest worst estimate so far (tol runs)
+        if o["n_p"] is None and (f0 := self._floor_at(n, frac, p_max)) > tol:  # refused before any run
+            self._unreachable(tol, n, f0, None, p_max)
         while True:
             if time.perf_counter() > self._deadline:
                 self._out_of_time(f"{runs} runs done, degree {n}")
@@ -300,7 +362,9 @@ class ChebyshevSolver(Solver):
             L1_s, dA_s, dF_s, dP_s, dN_s = self._compare(main, start_part)
             A, F, A_pl = self._stats_of(*main)
             far_err = np.zeros_like(far) if hard else 2.0 * far
-            floor = 4.0 * np.finfo(float).eps * n * n  # round-off of the dense exponential
+            # round-off of the dense exponential: its backward error eps ||L dV|| (co.roundoff_floor), not below
+            # 4 eps n^2 (the quadrature of P at a small degree)
+            floor = np.maximum(4.0 * np.finfo(float).eps * n * n, self._roundoff)
             common = far_err + floor + t_err + self._unresolved  # (the start's quadrature error: an L1 contraction
             # carries it to every station; partners that all miss a spike agree with each other)
             est = {
@@ -319,6 +383,9 @@ class ChebyshevSolver(Solver):
             worst = max(float(np.max(est[q])) for q in ("L1", "contact_area", "plastic_area", "noncontact_area"))
             if o["n_p"] is not None or worst <= tol:
                 break
+            if best is not None and worst > best and float(np.max(floor)) >= 0.3 * worst:
+                self._unreachable(tol, n, float(np.max(floor)), best, p_max)  # a higher degree raised the error
+            best = worst if best is None else min(best, worst)
             grid_worst = max(float(np.max(v)) for v in (L1_g, dA_g, dP_g, dN_g))
             start_worst = max(float(np.max(v)) for v in (L1_s, dA_s, dP_s, dN_s)) / 4.0
             time_worst = float(np.max(t_err))
@@ -335,8 +402,10 @@ class ChebyshevSolver(Solver):
 
                 raise SolverError(
                     f"chebyshev: the error estimate {worst:.3e} exceeds tol = {tol:.3g} at degree {N_MAX}; "
-                    "loosen tol or use method='fv'"
+                    f"the best reachable accuracy is about {best:.1e}: loosen tol or use method='fv'"
                 )
+            if (f_next := self._floor_at(n, frac, p_max)) > tol:  # the next run cannot meet tol: refuse now
+                self._unreachable(tol, n, f_next, best, p_max)
         grids, P, _ = main
         info = {
             "path": self.path,
@@ -355,10 +424,11 @@ class ChebyshevSolver(Solver):
                 "plastic_area": est["plastic_area"],
                 "noncontact_area": est["noncontact_area"],
                 "load": est["load"],
-                "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + 2 x far-wall mass + 4 eps n^2 "
+                "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + 2 x far-wall mass "
+                "+ max(4 eps n^2, eps ||L dV||_1 (n/400)^2) "
                 "+ the start's quadrature error on the grid"
                 + (" + |march - companion march at double steps|" if self.path == "magnus" else ""),
-                "parts": {"time": t_err},
+                "parts": {"time": t_err, "roundoff": floor},
             },
             "far_wall_mass": np.zeros_like(far) if hard else far,
             # d/dV int p P dp = int c P dp - p_max J(p_max), integrated alongside (checked by the invariants): the
