@@ -153,10 +153,17 @@ def test_a_march_over_its_step_limit_is_forecast_and_refused_fast():
     # needs > 600 steps (it used to run all 600, 2.5 s, before refusing -- 10-20 s through auto on slower machines)
     pr = pf.FokkerPlanckProblem(PSD, p_bar=0.5 * SV, B2=lambda p, z: DV(z) * (1.0 + p * z))
     t0 = time.perf_counter()
-    with pytest.raises(pf.SolverError, match=r"forecast to need .* loosen tol to about \d\.\de-0[67]") as err:
+    with pytest.raises(pf.SolverError, match=r"forecast to need .* loosen tol to about \d\.\de-0[67]"):
         pf.solve(pr, method="chebyshev", tol=1e-7)
     assert time.perf_counter() - t0 < 2.0
-    # the tol it names fits in the march's steps (~10 s: the march at ~450 steps is the slow path)
+
+
+@pytest.mark.slow
+def test_the_tol_a_refused_march_names_fits():
+    # the tol the refusal above names fits in the march's steps (~7 s: the march at ~450 steps)
+    pr = pf.FokkerPlanckProblem(PSD, p_bar=0.5 * SV, B2=lambda p, z: DV(z) * (1.0 + p * z))
+    with pytest.raises(pf.SolverError, match=r"loosen tol to about") as err:
+        pf.solve(pr, method="chebyshev", tol=1e-7)
     reach = float(str(err.value).split("loosen tol to about ")[1].split(" ")[0])
     sol = pf.solve(pr, method="chebyshev", tol=reach)
     assert sol.info["march"]["steps"] <= 600 and float(np.max(sol.info["error_estimate"]["L1"])) <= reach

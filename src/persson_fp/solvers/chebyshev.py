@@ -442,10 +442,7 @@ class ChebyshevSolver(Solver):
         Pout, p, w, extra = self._output(grids, P, p_max, n)
         info["grid"].update(extra)
         # the polynomial's ripple where P is ~0 (tails, next to the walls) is within the estimate: set to 0
-        peak = np.max(Pout, axis=-1, keepdims=True)
-        ripple = (Pout < 0) & (Pout > -1e-6 * peak)
-        Pout = np.where(ripple, 0.0, Pout)
-        info["ripple_zeroed"] = int(np.count_nonzero(ripple))
+        Pout, info["ripple_zeroed"] = co.zero_ripple(Pout)
         return SolverOutput(
             p=p,
             P0=Pout,

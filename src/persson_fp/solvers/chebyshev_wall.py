@@ -45,12 +45,11 @@ import math
 import time
 
 import numpy as np
-import scipy.linalg as sla
 
 from persson_fp.results.invariants import SolverError
 from persson_fp.solvers.base import SolverOutput
 from persson_fp.solvers.engine import collocation as co
-from persson_fp.solvers.engine.magnus import MAX_STEPS
+from persson_fp.solvers.engine.magnus import MAX_STEPS, cf4_step
 from persson_fp.theory.strip import strip_quantities
 
 __all__ = ["check_wall_problem", "solve_moving_wall", "N_MAX_WALL"]
@@ -153,17 +152,6 @@ def _operator(grid, s: float, sV: float, dbeta: float):
     return M
 
 
-_C = math.sqrt(3.0) / 6.0
-_B1, _B2 = 0.25 + _C, 0.25 - _C
-
-
-def _step(A_of, V, h, y):
-    """One commutator-free fourth-order exponential step (that of :mod:`persson_fp.solvers.engine.magnus`)."""
-    A1, A2 = A_of(V + (0.5 - _C) * h), A_of(V + (0.5 + _C) * h)
-    y = np.einsum("lij,lj->li", sla.expm(h * (_B1 * A1 + _B2 * A2)), y)
-    return np.einsum("lij,lj->li", sla.expm(h * (_B2 * A1 + _B1 * A2)), y)
-
-
 def _march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: float, deadline=None, nodes=None):
     """March dy/dV = A(V) y from V_a to V_b: (y, estimate (n_loads,), stats, the accepted nodes).
 
@@ -182,8 +170,8 @@ def _march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: float, dea
     if nodes is not None:
         for Vn in [v for v in nodes if v > V_a * (1.0 + 1e-12)]:
             h = Vn - V
-            z = _step(A_of, V, h, z)
-            y = _step(A_of, V + 0.5 * h, 0.5 * h, _step(A_of, V, 0.5 * h, y))
+            z = cf4_step(A_of, V, h, z)
+            y = cf4_step(A_of, V + 0.5 * h, 0.5 * h, cf4_step(A_of, V, 0.5 * h, y))
             V = Vn
             steps += 1
         return y, 2.0 * norm(y - z), {"steps": steps, "rejected": 0, "expm": 6 * steps}, nodes
@@ -202,15 +190,15 @@ def _march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: float, dea
         last = V + h >= V_b * (1.0 - 1e-13)
         if last:
             h = V_b - V
-        full = _step(A_of, V, h, y)
-        two = _step(A_of, V + 0.5 * h, 0.5 * h, _step(A_of, V, 0.5 * h, y))
+        full = cf4_step(A_of, V, h, y)
+        two = cf4_step(A_of, V + 0.5 * h, 0.5 * h, cf4_step(A_of, V, 0.5 * h, y))
         worst = float(np.max(norm(two - full))) / 15.0
         if worst >= 0.5 * last_reject and worst <= 100.0 * floor:  # a smaller step did not help: round-off
             noise = max(noise, 2.0 * worst)
         target = max(tol * math.log1p(h / V) / log_span, noise)
         if worst <= target:
             last_reject = math.inf
-            z = full if steps == 0 else _step(A_of, V, h, z)
+            z = full if steps == 0 else cf4_step(A_of, V, h, z)
             y, V = two, (V_b if last else V + h)
             accepted.append(V)
             steps += 1
@@ -407,10 +395,7 @@ def solve_moving_wall(solver) -> SolverOutput:
         "wall_value": main["beta"] * main["A_pl"],
     }
     p, P0, weights = _output(pr, main, n)
-    peak = np.max(P0, axis=-1, keepdims=True)
-    ripple = (P0 < 0) & (P0 > -1e-6 * peak)
-    P0 = np.where(ripple, 0.0, P0)
-    info["ripple_zeroed"] = int(np.count_nonzero(ripple))
+    P0, info["ripple_zeroed"] = co.zero_ripple(P0)
     return SolverOutput(
         p=p,
         P0=P0,

@@ -406,3 +406,12 @@ def roundoff_floor(L, span: float, n: int):
     """
     norm = np.max(np.sum(np.abs(L), axis=-2), axis=-1)
     return np.finfo(float).eps * norm * abs(float(span)) * (n / ROUNDOFF_N_REF) ** 2
+
+
+def zero_ripple(P0):
+    """(P0 with its negative ripple set to 0, how many values): values in (-1e-6 x the peak, 0) per station and load,
+    the polynomial's oscillation where P is ~0 (tails, next to the walls), within the error estimate; deeper dips are
+    kept for the invariant checks to judge."""
+    peak = np.max(P0, axis=-1, keepdims=True)
+    ripple = (P0 < 0) & (P0 > -1e-6 * peak)
+    return np.where(ripple, 0.0, P0), int(np.count_nonzero(ripple))

@@ -33,7 +33,7 @@ import time
 import numpy as np
 import scipy.linalg as sla
 
-__all__ = ["magnus_march", "MAX_STEPS", "MarchTooLong"]
+__all__ = ["magnus_march", "cf4_step", "MAX_STEPS", "MarchTooLong"]
 
 MAX_STEPS = 600
 """Accepted plus rejected steps a march may take before it gives up (a ``RuntimeError`` the caller reports)."""
@@ -60,7 +60,7 @@ _C = math.sqrt(3.0) / 6.0
 _B1, _B2 = 0.25 + _C, 0.25 - _C
 
 
-def _step(A_of, V, h, y):
+def cf4_step(A_of, V, h, y):
     """One commutator-free fourth-order step: exp(h (b2 A1 + b1 A2)) exp(h (b1 A1 + b2 A2)) y."""
     A1, A2 = A_of(V + (0.5 - _C) * h), A_of(V + (0.5 + _C) * h)
     y = np.einsum("lij,lj->li", sla.expm(h * (_B1 * A1 + _B2 * A2)), y)
@@ -128,8 +128,8 @@ def magnus_march(
         last = V + h >= V_b * (1.0 - 1e-13)
         if last:
             h = V_b - V
-        full = _step(A_of, V, h, y)
-        two = _step(A_of, V + 0.5 * h, 0.5 * h, _step(A_of, V, 0.5 * h, y))
+        full = cf4_step(A_of, V, h, y)
+        two = cf4_step(A_of, V + 0.5 * h, 0.5 * h, cf4_step(A_of, V, 0.5 * h, y))
         err = norm(two - full) / 15.0
         worst = float(np.max(err))
         allowed = tol * math.log1p(h / V) / log_span if V > 0 else tol * h / span
@@ -138,7 +138,7 @@ def magnus_march(
         target = max(allowed, noise_level)
         if worst <= target:
             last_reject = math.inf
-            z = full if steps == 0 or z is y else _step(A_of, V, h, z)
+            z = full if steps == 0 or z is y else cf4_step(A_of, V, h, z)
             y, V = two, (V_b if last else V + h)
             steps += 1
             h *= 4.0 if worst == 0.0 else float(np.clip(0.9 * (target / worst) ** 0.25, 0.2, 4.0))
