@@ -21,6 +21,8 @@ This module imports no solver.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -299,6 +301,12 @@ class PSD:
             dV/dzeta at each ``zeta``.
         """
         E_star = as_positive_scalar(E_star, "E_star")
+        if type(zeta) is float and 1.0 - 1e-12 <= zeta <= self.zeta_max * (1.0 + 1e-12):
+            # one magnification (what a coefficient B2(p, zeta) asks at every step): no array round trip, ~3 us
+            # instead of ~30; the same clipping and the same C(q) as below
+            q = min(max(zeta, 1.0), self.zeta_max) * self.q_l
+            q = np.float64(q)
+            return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(float(q))
         z = np.asarray(self._zeta(zeta), dtype=float)
         q = z * self.q_l
         return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(q)
@@ -437,6 +445,10 @@ class SelfAffinePSD(PSD):
         return self.q_r / self.q_l
 
     def C(self, q: ArrayLike) -> np.ndarray:
+        if type(q) is float and math.isfinite(q):  # one wavenumber: the same branches in floats
+            if not self.q_l <= q <= self.q_s:
+                return np.float64(0.0)
+            return self.C0 * np.power(np.float64(self.q_r if q < self.q_r else q), -2.0 * (1.0 + self.H))
         q = as_float_array(q, "q")
         plateau = self.C0 * np.power(np.float64(self.q_r), -2.0 * (1.0 + self.H))
         with np.errstate(divide="ignore"):
