@@ -18,8 +18,9 @@ with u = 0 at both walls (``_operator``), so the state :math:`y = [u(x_1 \dots x
 *linear* system :math:`dy/dV = A(V)\,y` whose operator depends on V through s, s_V and :math:`\beta'` only (linear
 because S = 1; a fudge factor S(A) would make it nonlinear and is declined).  It is marched by the commutator-free
 fourth-order exponential step of :mod:`persson_fp.solvers.engine.magnus` with its step control (step doubling, a
-companion march at the doubled steps for the estimate), re-implemented here (``_march``) so that the partner runs
-can replay the main run's steps.  Where beta is constant in V (sigma_Y sigma_Y' proportional to V': sigma_Y ~
+companion march at the doubled steps for the estimate; ``magnus_march``), the partner runs replaying the main run's
+steps (``nodes=``) and refused early by its pace in ln V (``refusal="pace"``).  Where beta is constant in V
+(sigma_Y sigma_Y' proportional to V': sigma_Y ~
 zeta^(1 - H) on a self-affine spectrum of Hurst exponent H beyond its roll-off, the scene of
 ``benchmarks/plasticity.py``) the march is 4th order (measured 4.0), and where beta changes slowly nearly so; where
 beta changes fast -- the wall outrunning diffusion -- the V-dependent factor on
@@ -49,7 +50,7 @@ import numpy as np
 from persson_fp.results.invariants import SolverError
 from persson_fp.solvers.base import SolverOutput
 from persson_fp.solvers.engine import collocation as co
-from persson_fp.solvers.engine.magnus import MAX_STEPS, cf4_step
+from persson_fp.solvers.engine.magnus import magnus_march
 from persson_fp.theory.strip import strip_quantities
 
 __all__ = ["check_wall_problem", "solve_moving_wall", "N_MAX_WALL"]
@@ -152,65 +153,6 @@ def _operator(grid, s: float, sV: float, dbeta: float):
     return M
 
 
-def _march(A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: float, deadline=None, nodes=None):
-    """March dy/dV = A(V) y from V_a to V_b: (y, estimate (n_loads,), stats, the accepted nodes).
-
-    Adaptive as :func:`persson_fp.solvers.engine.magnus.magnus_march` (step doubling, the local estimate per unit
-    ln V held to tol / ln(V_b / V_a), the half-step result kept, a companion march at the single steps whose
-    difference, doubled, is the estimate) -- or, given ``nodes``, on those steps (those of the main run beyond
-    V_a): the partner runs then share the main run's steps, so that their differences from it measure the degree
-    and the start and not the steps, which the companion measures.  Where the wall moves fast against diffusion
-    (beta = 2 s s_V changing with V multiplies the wall-flux coupling) the march loses order (measured 2 on the
-    README's example, 4 where beta is constant); the companion's estimate holds for any order >= 1."""
-    log_span = math.log(V_b / V_a)
-    V, y = float(V_a), np.array(y0, dtype=float)
-    z = y.copy()
-    steps = rejected = 0
-    accepted = [V]
-    if nodes is not None:
-        for Vn in [v for v in nodes if v > V_a * (1.0 + 1e-12)]:
-            h = Vn - V
-            z = cf4_step(A_of, V, h, z)
-            y = cf4_step(A_of, V + 0.5 * h, 0.5 * h, cf4_step(A_of, V, 0.5 * h, y))
-            V = Vn
-            steps += 1
-        return y, 2.0 * norm(y - z), {"steps": steps, "rejected": 0, "expm": 6 * steps}, nodes
-    h = min((V_b - V_a) / 8.0, 2.0 * V_a)
-    noise, last_reject = floor, math.inf
-    while V < V_b:
-        if deadline is not None and time.perf_counter() > deadline:
-            raise TimeoutError(f"the march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
-        tried = steps + rejected
-        done = math.log(V / V_a) / log_span  # (the share of the span in ln V behind)
-        if tried >= MAX_STEPS or (tried >= 60 and tried > 2.0 * MAX_STEPS * done):
-            raise RuntimeError(
-                f"{tried} exponential steps reached V = {V:.6g} of {V_b:.6g} (h = {h:.3g}; at most {MAX_STEPS}, "
-                "and this pace would need more than 2x that)"
-            )
-        last = V + h >= V_b * (1.0 - 1e-13)
-        if last:
-            h = V_b - V
-        full = cf4_step(A_of, V, h, y)
-        two = cf4_step(A_of, V + 0.5 * h, 0.5 * h, cf4_step(A_of, V, 0.5 * h, y))
-        worst = float(np.max(norm(two - full))) / 15.0
-        if worst >= 0.5 * last_reject and worst <= 100.0 * floor:  # a smaller step did not help: round-off
-            noise = max(noise, 2.0 * worst)
-        target = max(tol * math.log1p(h / V) / log_span, noise)
-        if worst <= target:
-            last_reject = math.inf
-            z = full if steps == 0 else cf4_step(A_of, V, h, z)
-            y, V = two, (V_b if last else V + h)
-            accepted.append(V)
-            steps += 1
-            h *= 4.0 if worst == 0.0 else float(np.clip(0.9 * (target / worst) ** 0.25, 0.2, 4.0))
-        else:
-            rejected += 1
-            last_reject = worst
-            h *= float(np.clip(0.9 * (target / worst) ** 0.25, 0.05, 0.5))
-    stats = {"steps": steps, "rejected": rejected, "expm": 6 * (steps + rejected) + 2 * max(steps - 1, 0)}
-    return y, 2.0 * norm(y - z), stats, accepted
-
-
 def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
     """One run at degree n and start fraction ``frac`` (on the steps ``nodes[k]`` per station if given): a dict of
     per-station arrays, the grids and the accepted steps."""
@@ -247,15 +189,24 @@ def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
             return np.sum(np.abs(d[:, :m]) * wts, axis=-1) + np.abs(d[:, m]) * lift
 
         y0 = np.concatenate([w0[:, 1:-1], q["plastic_area"][:, None] * np.ones((nl, 1)), np.zeros((nl, 1))], axis=1)
+        used = []  # (the accepted steps: the partners replay them)
         try:
-            y, t_err, st, used = _march(
-                A_of, y0, V0, V, tol_t, norm, floor, solver._deadline, None if nodes is None else nodes[k]
+            y, t_err, st = magnus_march(
+                A_of,
+                y0,
+                V0,
+                V,
+                tol_t,
+                norm,
+                floor,
+                None,
+                solver._deadline,
+                nodes=None if nodes is None else nodes[k],
+                record=used,
+                refusal="pace",
             )
         except TimeoutError as err:
-            raise SolverError(
-                f"chebyshev (moving wall): max_time = {solver.max_time:.3g} s exceeded ({err}); loosen tol, or pass "
-                "a larger max_time (seconds)"
-            ) from None
+            solver._out_of_time(f"moving wall: {err}")
         except RuntimeError as err:
             raise SolverError(f"chebyshev (moving wall): {err}; loosen tol or use method='fv'") from None
         for key in stats:
@@ -271,7 +222,7 @@ def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
         out["A_non"][k] = q["noncontact_area"] + y[:, m + 1]
         out["t_err"][k] = t_err
         out["grids"].append(grid)
-        out["nodes"].append(used)
+        out["nodes"].append(used if nodes is None else nodes[k])
     out["stats"] = stats
     return out
 
@@ -367,10 +318,7 @@ def solve_moving_wall(solver) -> SolverOutput:
                 f"{N_MAX_WALL}; loosen tol or use method='fv'"
             )
         if time.perf_counter() > solver._deadline:
-            raise SolverError(
-                f"chebyshev (moving wall): max_time = {solver.max_time:.3g} s exceeded after {runs} runs (degree {n}); "
-                "loosen tol, or pass a larger max_time (seconds)"
-            )
+            solver._out_of_time(f"moving wall: {runs} runs done, degree {n}")
     load = main["F_el"] + main["s"][:, None] * main["A_pl"]
     info = {
         "path": "moving-wall",

@@ -68,7 +68,19 @@ def cf4_step(A_of, V, h, y):
 
 
 def magnus_march(
-    A_of, y0, V_a: float, V_b: float, tol: float, norm, floor: float, h0: float | None = None, deadline=None
+    A_of,
+    y0,
+    V_a: float,
+    V_b: float,
+    tol: float,
+    norm,
+    floor: float,
+    h0: float | None = None,
+    deadline=None,
+    *,
+    nodes=None,
+    record: list | None = None,
+    refusal: str = "forecast",
 ):
     """March dy/dV = A(V) y from V_a to V_b with adaptive fourth-order exponential steps.
 
@@ -94,6 +106,14 @@ def magnus_march(
         First trial step; default min((V_b - V_a) / 8, 2 V_a) (a narrow start changes on the scale V_a).
     deadline : float or None
         A ``time.perf_counter()`` value: past it the march stops with a ``TimeoutError`` (the caller's max_time).
+    nodes : sequence of float or None
+        Replay: take exactly these steps (the accepted points of an earlier march, those beyond V_a), no step
+        control -- partner runs on the steps of a main run then differ from it by their own changes alone.
+    record : list or None
+        The accepted points (V_a first) are appended to it (the ``nodes`` of a replay).
+    refusal : {"forecast", "pace"}
+        The early refusal: "forecast" as below; "pace" (a moving wall, whose steps shrink where the wall speeds up)
+        after 60 tries, when the tries exceed 2 MAX_STEPS times the share of ln(V_b / V_a) behind.
 
     Returns
     -------
@@ -113,6 +133,19 @@ def magnus_march(
     log_span = math.log(V_b / V_a) if V_a > 0 else 0.0
     V, y = float(V_a), np.array(y0, dtype=float)
     z = y.copy()  # the companion: the same steps, each taken once
+    if nodes is not None:
+        steps = 0
+        for Vn in [v for v in nodes if v > V_a * (1.0 + 1e-12)]:
+            h = Vn - V
+            z = cf4_step(A_of, V, h, z)
+            y = cf4_step(A_of, V + 0.5 * h, 0.5 * h, cf4_step(A_of, V, 0.5 * h, y))
+            V = Vn
+            steps += 1
+        return y, 2.0 * norm(y - z), {"steps": steps, "rejected": 0, "expm": 6 * steps}
+    if refusal not in ("forecast", "pace"):
+        raise ValueError(f"refusal must be 'forecast' or 'pace', got {refusal!r}")
+    if record is not None:
+        record.append(V)
     h = min(span, h0 if h0 is not None else min(span / 8.0, 2.0 * V_a if V_a > 0 else span))
     steps = rejected = 0
     last_reject = math.inf  # the error of the last rejected try from this V (a round-off test)
@@ -120,7 +153,16 @@ def magnus_march(
     while V < V_b:
         if deadline is not None and time.perf_counter() > deadline:
             raise TimeoutError(f"the march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
-        if steps + rejected >= MAX_STEPS:
+        tried = steps + rejected
+        if refusal == "pace" and (
+            tried >= MAX_STEPS or (tried >= 60 and tried > 2.0 * MAX_STEPS * math.log(V / V_a) / log_span)
+        ):
+            raise MarchTooLong(
+                f"{tried} exponential steps reached V = {V:.6g} of {V_b:.6g} (h = {h:.3g}; at most {MAX_STEPS}, "
+                "and this pace would need more than 2x that)",
+                tol * (1.0 + (V_b - V) / (h * MAX_STEPS)) ** ORDER_TOL,
+            )
+        if tried >= MAX_STEPS:
             raise MarchTooLong(
                 f"{MAX_STEPS} exponential steps did not reach V = {V_b:.6g} (at {V:.6g}, h = {h:.3g})",
                 tol * (1.0 + (V_b - V) / (h * MAX_STEPS)) ** ORDER_TOL,
@@ -141,7 +183,11 @@ def magnus_march(
             z = full if steps == 0 or z is y else cf4_step(A_of, V, h, z)
             y, V = two, (V_b if last else V + h)
             steps += 1
+            if record is not None:
+                record.append(V)
             h *= 4.0 if worst == 0.0 else float(np.clip(0.9 * (target / worst) ** 0.25, 0.2, 4.0))
+            if refusal == "pace":
+                continue
             # the forecast, once a tenth of the span is done (before, the steps grow with V, uniform in ln V): the
             # smaller of the steps so far plus the rest at the present step size and the steps so far at their mean
             # rate per unit V (the first over-predicts where h dips for a while, the second where the first steps
