@@ -170,15 +170,9 @@ class ChebyshevSolver(Solver):
         floor = 4.0 * np.finfo(float).eps * n * n
         path = self.path
         for k, V in enumerate(self.V_out):
-            V0 = frac * float(V)
-            # the start: at V0 in V (separable), in the clock tau(V0) (clock), with the coefficients of mid-[0, V0]
-            V_start, t0 = (None, V0) if path == "exponential" else (0.5 * V0, V0)
-            if path == "clock":
-                V_start, t0 = None, cf.tau(0.0, V0)
-            b_at = cf.at(pb, V_start)[0]
+            V0, V_start, t0, b_at, grid = self._start_grid(n, frac, float(p_max[k]), float(V))
             if np.any(b_at <= 0):
                 raise ValueError("method 'chebyshev': B2 vanishes at the load p_bar (the start cannot spread)")
-            grid = co.chebyshev_grid(n, p_max[k], pb, 3.0 * np.sqrt(b_at * t0))
             wall = None if self._sigma is None else np.full(pb.shape, self._sigma)
             P = co.start_density(lambda q, Vs=V_start: cf.at(q, Vs), grid.p, pb, t0, p_wall=wall)
             P[:, 0] = P[:, -1] = 0.0
@@ -276,20 +270,28 @@ class ChebyshevSolver(Solver):
         self._unresolved, self._roundoff = unresolved, roundoff
         return main, grid_part, start_part
 
+    def _start_grid(self, n, frac, p_max, V):
+        """(V0, V_start, t0, b at the loads, grid) of the station at V: the start at V0 = frac V -- in V (separable),
+        in the clock tau(V0) (clock), with the coefficients of mid-[0, V0] (Magnus) -- and the grid whose nodes
+        cluster within a few of its widths sqrt(b t0) of each load (None where b vanishes at a load)."""
+        cf, pb = self._cf, self.problem.p_bar.astype(float)
+        V0 = frac * V
+        V_start, t0 = (None, V0) if self.path == "exponential" else (0.5 * V0, V0)
+        if self.path == "clock":
+            V_start, t0 = None, cf.tau(0.0, V0)
+        b_at = cf.at(pb, V_start)[0]
+        grid = co.chebyshev_grid(n, p_max, pb, 3.0 * np.sqrt(b_at * t0)) if np.all(b_at > 0) else None
+        return V0, V_start, t0, b_at, grid
+
     def _floor_at(self, n, frac, p_max):
         """The largest round-off floor (:func:`co.roundoff_floor`, not below 4 eps n^2) a run at degree n and start
         fraction ``frac`` would report, over stations and loads -- from the operators alone, before any run
         (milliseconds: the grids and generators of :meth:`_run` without their exponentials or march)."""
-        cf, pb, worst = self._cf, self.problem.p_bar.astype(float), 4.0 * np.finfo(float).eps * n * n
+        cf, worst = self._cf, 4.0 * np.finfo(float).eps * n * n
         for k, V in enumerate(self.V_out):
-            V0 = frac * float(V)
-            V_start, t0 = (None, V0) if self.path == "exponential" else (0.5 * V0, V0)
-            if self.path == "clock":
-                V_start, t0 = None, cf.tau(0.0, V0)
-            b_at = cf.at(pb, V_start)[0]
+            V0, _, _, b_at, grid = self._start_grid(n, frac, float(p_max[k]), float(V))
             if np.any(b_at <= 0):
                 return worst  # (the run names it)
-            grid = co.chebyshev_grid(n, p_max[k], pb, 3.0 * np.sqrt(b_at * t0))
             if self.path != "magnus":
                 span = float(V) - V0 if self.path == "exponential" else cf.tau(V0, float(V))
                 L = co.generator(grid, *cf.at(grid.p))
