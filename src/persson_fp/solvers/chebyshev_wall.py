@@ -35,7 +35,8 @@ and the strip's areas at (s(V0), V0) (:func:`persson_fp.theory.strip.strip_quant
 *Error estimate* (``info["error_estimate"]``; per station and load), as for the other paths of
 :mod:`persson_fp.solvers.chebyshev`: the difference from a partner run at 3/4 of the degree, the difference from one
 started at 4 V0 divided by 4, the march's own estimate (twice the difference from its companion), the start's
-quadrature error on the grid, a round-off floor 4 eps n^2 and the residual of the area balance A_el + A_pl + A_non
+quadrature error on the grid, a round-off floor (that of the general path, ``collocation.roundoff_floor``, not
+below 4 eps n^2) and the residual of the area balance A_el + A_pl + A_non
 = 1 (exact in the continuum; the collocated wall fluxes meet it to the discretisation error).  With ``tol`` the
 degree is raised, V0 lowered or the march tightened, whichever part dominates, until the estimate meets it.
 """
@@ -160,7 +161,7 @@ def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
     pb = pr.p_bar.astype(float)
     n_st, nl = solver.V_out.size, pb.size
     shape = (n_st, nl)
-    out = {key: np.zeros(shape) for key in ("A_el", "A_pl", "A_non", "F_el", "t_err", "unresolved", "beta")}
+    out = {key: np.zeros(shape) for key in ("A_el", "A_pl", "A_non", "F_el", "t_err", "unresolved", "beta", "roundoff")}
     out["W"], out["grids"], out["s"], out["nodes"] = np.zeros((n_st, nl, n + 1)), [], np.zeros(n_st), []
     stats = {"steps": 0, "rejected": 0, "expm": 0}
     floor = 4.0 * np.finfo(float).eps * n * n
@@ -221,6 +222,8 @@ def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
         out["A_pl"][k] = y[:, m]
         out["A_non"][k] = q["noncontact_area"] + y[:, m + 1]
         out["t_err"][k] = t_err
+        # the dense exponentials' backward error, as on the general Magnus path (collocation.roundoff_floor)
+        out["roundoff"][k] = co.roundoff_floor(np.maximum(np.abs(A_of(V0)), np.abs(A_of(V))), V - V0, n)
         out["grids"].append(grid)
         out["nodes"].append(used if nodes is None else nodes[k])
     out["stats"] = stats
@@ -271,7 +274,7 @@ def solve_moving_wall(solver) -> SolverOutput:
                 total[key] += r["stats"][key]
         L1_g, dA_g, dP_g, dN_g, dF_g = _compare(main, grid_part, pr.p_bar)
         L1_s, dA_s, dP_s, dN_s, dF_s = _compare(main, start_part, pr.p_bar)
-        floor = 4.0 * np.finfo(float).eps * n * n
+        floor = np.maximum(4.0 * np.finfo(float).eps * n * n, main["roundoff"])
         balance = np.abs(main["A_el"] + main["A_pl"] + main["A_non"] - 1.0)
         t_err, unresolved = main["t_err"], main["unresolved"]
         common = floor + t_err + unresolved + balance
@@ -334,8 +337,9 @@ def solve_moving_wall(solver) -> SolverOutput:
         "error_estimate": {
             **est,
             "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + |march - companion march at double "
-            "steps| x 2 + the start's quadrature error + 4 eps n^2 + |A_el + A_pl + A_non - 1|",
-            "parts": {"time": t_err, "area_balance": balance, "start": unresolved},
+            "steps| x 2 + the start's quadrature error + max(4 eps n^2, eps ||L dV||_1 (n/400)^2) "
+            "+ |A_el + A_pl + A_non - 1|",
+            "parts": {"time": t_err, "area_balance": balance, "start": unresolved, "roundoff": floor},
         },
         "area_residual": float(np.max(balance)),
         "load_residual": float(np.max(np.abs(load - pr.p_bar) / pr.p_bar)),
