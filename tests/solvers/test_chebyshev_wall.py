@@ -173,3 +173,12 @@ def test_fourth_order_in_V_where_beta_is_constant():
         }
     order = np.log2(abs(a[8] - a[96]) / abs(a[16] - a[96]))
     assert 3.5 < order < 4.6, order
+
+
+def test_auto_names_the_callers_max_time_when_the_chebyshev_attempt_used_it():
+    """(outside review) The chebyshev attempt spent the budget, fv was handed max(left, 1e-3) s and refused naming
+    "max_time = 0.001 s", a budget the caller never gave; now one SolverError naming the caller's."""
+    pr = scene_b().with_loads(np.linspace(0.05, 0.9, 8))
+    with pytest.raises(SolverError, match=r"max_time = 0.2 s: the chebyshev attempt took") as err:
+        pf.solve(pr, "auto", tol=1e-7, max_time=0.2)
+    assert "0.001" not in str(err.value)

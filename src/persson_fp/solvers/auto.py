@@ -249,14 +249,28 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, ma
         try:
             return _solve_chebyshev(problem, zeta_out, tol, capped)
         except (ValueError, SolverError) as err:
-            declined = f"; method 'chebyshev' declined: {err}"
-            if budget["max_time"] is not None:
-                budget["max_time"] = max(budget["max_time"] - (time.perf_counter() - t_cheb), 1e-3)
+            declined, cheb_err = f"; method 'chebyshev' declined: {err}", str(err)
+            if max_time is not None:  # fv gets what the chebyshev attempt left of the caller's budget
+                budget["max_time"] = max_time - (time.perf_counter() - t_cheb)
     what = "a scale-dependent hardness" if problem.moving_wall else "general Fokker-Planck coefficients"
     why = (
         f"no closed form ({what}): finite volumes on the front-fixed engine, n cells and n steps from the "
         f"measured error model C/n^2, checked by a half-resolution partner run{declined}"
     )
+    if max_time is not None and budget["max_time"] != max_time:
+        spent = max_time - budget["max_time"]
+        try:
+            if budget["max_time"] <= 0.0:
+                raise SolverError("no time left")
+            return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+        except (ValueError, SolverError) as err:
+            if "max_time" not in str(err) and str(err) != "no time left":
+                raise
+            raise SolverError(
+                f"auto: tol = {tol:g} not met within max_time = {max_time:g} s: the chebyshev attempt took "
+                f"{spent:.3g} s and was declined ({cheb_err[:200]}), and fv then ran out of the rest "
+                f"({err}); ask for a looser tol or a larger max_time"
+            ) from None
     return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
 
 
