@@ -182,3 +182,10 @@ def test_auto_names_the_callers_max_time_when_the_chebyshev_attempt_used_it():
     with pytest.raises(SolverError, match=r"max_time = 0.2 s: the chebyshev attempt took") as err:
         pf.solve(pr, "auto", tol=1e-7, max_time=0.2)
     assert "0.001" not in str(err.value)
+
+
+def test_a_station_at_zeta_near_1_is_refused_naming_the_remedy():
+    """(outside review) zeta_out = 1 + 1e-12: the PDF is 1e-6 of sigma_Y wide, no degree resolves it; the refusal said
+    "loosen tol"; now it names the station and the remedy."""
+    with pytest.raises(SolverError, match=r"worst at zeta = 1\).*start zeta_out later"):
+        pf.solve(scene_b(), "chebyshev", zeta_out=[1.0 + 1e-12, 10.0], tol=1e-6)

@@ -316,9 +316,14 @@ def solve_moving_wall(solver) -> SolverOutput:
         elif grid_worst > share or not refined:
             n = int(math.ceil(1.3 * n))
         if n > N_MAX_WALL:
+            k = int(np.argmax(np.max(est["L1"], axis=1)))  # the station that fails
+            z_k, width = float(solver.zeta_out[k]), math.sqrt(float(solver.V_out[k])) / float(main["s"][k])
+            hint = "loosen tol or use method='fv'"
+            if width < 1e-2:  # (the PDF a tiny fraction of the domain wide: no degree resolves it)
+                hint = f"the PDF there is {width:.1e} of sigma_Y wide: start zeta_out later (or use method='fv')"
             raise SolverError(
                 f"chebyshev (moving wall): the error estimate {worst:.3e} exceeds tol = {tol:.3g} at degree "
-                f"{N_MAX_WALL}; loosen tol or use method='fv'"
+                f"{N_MAX_WALL} (worst at zeta = {z_k:.6g}); {hint}"
             )
         if time.perf_counter() > solver._deadline:
             solver._out_of_time(f"moving wall: {runs} runs done, degree {n}")
