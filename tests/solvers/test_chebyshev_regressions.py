@@ -167,3 +167,21 @@ def test_the_tol_a_refused_march_names_fits():
     reach = float(str(err.value).split("loosen tol to about ")[1].split(" ")[0])
     sol = pf.solve(pr, method="chebyshev", tol=reach)
     assert sol.info["march"]["steps"] <= 600 and float(np.max(sol.info["error_estimate"]["L1"])) <= reach
+
+
+@pytest.mark.parametrize(
+    "B2",
+    [
+        lambda p, z: DV(z),  # a scalar (broadcast over p)
+        lambda p, z: [DV(z)] * np.size(p),  # a list
+        lambda p, z: np.array(DV(z) * np.ones_like(p), order="F"),  # a copy, not a view
+    ],
+)
+def test_the_separable_confirmation_accepts_every_coefficient_form_the_checked_path_does(B2):
+    # the quadrature confirming B2 = b(p) dV/dzeta calls B2 directly where it returns a float64 array of p's shape
+    # and goes through the checked path otherwise: every form gives the image solution A* = erf(p_bar / sqrt(2V))
+    pb = 0.5 * SV
+    sol = pf.solve(pf.FokkerPlanckProblem(PSD, p_bar=pb, B2=B2), method="chebyshev", tol=1e-8)
+    exact = float(erf(pb / np.sqrt(2.0 * PSD.V())))
+    assert sol.info["path"] == "exponential"
+    assert abs(float(sol.contact_area[-1]) - exact) < 1e-8

@@ -143,9 +143,10 @@ class Coefficients:
             zb = self.zeta_of(V)
             zr = getattr(pr.psd, "zeta_r", None)
             pts = [zr] if zr is not None and 1.0 < zr < zb else None
+            b2 = self._b2_at(p_star)
             self._tau_cache[V] = float(
                 quad(
-                    lambda z: float(pr.coefficients(p_star, z)[1][0]) / b_ref,
+                    lambda z: b2(z) / b_ref,
                     1.0,
                     zb,
                     epsabs=0.0,
@@ -155,6 +156,28 @@ class Coefficients:
                 )[0]
             )
         return self._tau_cache[V]
+
+    def _b2_at(self, p_star: np.ndarray):
+        """B2(p*, zeta) as a float function of zeta for the quadratures: the user's callable called directly where
+        it returns a finite, non-negative float array of the shape of ``p*`` (~5 us, a quadrature makes ~250 calls),
+        the checked ``problem.coefficients`` otherwise (which names a bad value and where, or broadcasts)."""
+        pr = self.problem
+        f = pr.B2_fun
+        if f is None:
+            return lambda z: float(pr.dV_dzeta(z))
+
+        def b2(z):
+            try:
+                v = f(p_star, z)
+            except Exception:
+                v = None
+            if type(v) is np.ndarray and v.dtype == np.float64 and v.shape == p_star.shape:
+                x = float(v[0])
+                if 0.0 <= x < np.inf:
+                    return x
+            return float(pr.coefficients(p_star, z)[1][0])  # (raises naming B2 and where, or broadcasts)
+
+        return b2
 
     def zeta_of(self, V: float) -> float:
         """The magnification where the variance is V."""
