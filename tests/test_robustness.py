@@ -208,8 +208,9 @@ ARGUMENTS = {
     "k_domain": lambda v: pf.solve(_PR, "fv", k_domain=v),
     "max_memory": lambda v: pf.solve(_PR, "sines", max_memory=v),
 }
-# well-defined values of some arguments (H = 0 is a valid Hurst exponent, an empty zeta an empty evaluation)
-VALID = {("H", "zero"), ("zeta", "empty")}
+# well-defined values of some arguments (H = 0 is a valid Hurst exponent, an empty zeta an empty evaluation,
+# max_memory = inf no limit)
+VALID = {("H", "zero"), ("zeta", "empty"), ("max_memory", "inf")}
 
 
 @pytest.mark.parametrize("value", list(BAD), ids=list(BAD))
@@ -283,3 +284,27 @@ def test_budgets_are_overridable():
         pf.solve(REF(), "monte-carlo", max_time=1e-6)
     # the default budget lets the default run through, and a larger one a larger grid
     assert pf.solve(REF(), "fv", n_p=400, max_memory=2**34).compare().max_area_error_rel < 1e-4
+
+
+@pytest.mark.parametrize("method", ["sines", "fv", "auto"])
+def test_an_infinite_budget_is_no_limit(method):
+    """max_time = inf was refused with 'max_time must lie in (0, inf]' (review): inf is no limit, for every method
+    and for auto; the result is the one of the default budgets, to the bit."""
+    sol = pf.solve(_PR, method, max_time=float("inf"), max_memory=np.inf)
+    assert np.array_equal(sol.contact_area, pf.solve(_PR, method).contact_area)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"zeta_out": 1.0}, "zeta_out must lie in"),  # an OverflowError in auto's planning (review)
+        ({"zeta_out": []}, "zeta_out must hold"),  # numpy's 'zero-size array' (review)
+        ({"max_time": float("nan")}, "max_time"),  # an UnboundLocalError in auto (review)
+        ({"max_memory": -1.0}, "max_memory"),
+    ],
+)
+def test_auto_checks_stations_and_budgets_first(kwargs, match):
+    fp = pf.FokkerPlanckProblem(_PSD, p_bar=0.02, B2=lambda p, z: 2.0 * _PSD.dV_dzeta(z) * np.ones_like(p))
+    for problem in (fp, _PR):
+        with pytest.raises(ValueError, match=match):
+            pf.solve(problem, "auto", **kwargs)

@@ -185,3 +185,25 @@ def test_the_separable_confirmation_accepts_every_coefficient_form_the_checked_p
     exact = float(erf(pb / np.sqrt(2.0 * PSD.V())))
     assert sol.info["path"] == "exponential"
     assert abs(float(sol.contact_area[-1]) - exact) < 1e-8
+
+
+def test_a_vanishing_diffusion_is_named_as_such():
+    # B2 = 1e-300 was refused as 'B2 grows so fast in p (faster than p^2)' (review)
+    pr = pf.FokkerPlanckProblem(PSD, p_bar=0.5 * SV, B2=lambda p, z: np.full(np.shape(p), 1e-300))
+    with pytest.raises(ValueError, match="B2 is so small at the load"):
+        pf.solve(pr, method="chebyshev")
+
+
+def test_max_memory_refuses_a_large_degree_before_it_runs():
+    # n_p = 1000 with max_memory = 1 MB ran for 5 s with 8 MB matrices (review); the estimate 160 (n+1)^2 bytes
+    # per load is above the tracemalloc peak at n = 100 (measured 1.9 MB <= 2.6 MB: asserted here)
+    import tracemalloc
+
+    pr = pf.FokkerPlanckProblem(PSD, p_bar=0.5 * SV, B2=lambda p, z: 2.0 * DV(z) * np.ones_like(p))
+    with pytest.raises(ValueError, match="max_memory"):
+        pf.solve(pr, method="chebyshev", n_p=1000, max_memory=1e6)
+    tracemalloc.start()
+    pf.solve(pr, method="chebyshev", n_p=100)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert peak <= 160.0 * 101**2 + 1e6

@@ -140,7 +140,11 @@ def solve_to_tol(
     ``max_memory`` / ``max_time`` bound every attempt (the solver's own estimate refuses one that would exceed
     them) and ``max_time`` also the whole refinement: a refinement whose predicted time (the last attempt's, scaled
     by the growth of n_p x n_steps) would overrun it is refused with a :class:`~persson_fp.SolverError`."""
+    from persson_fp.solvers.base import check_budgets, check_zeta_out
+
     t0 = time.perf_counter()
+    check_zeta_out(problem, zeta_out)  # (before _first_options plans with it)
+    check_budgets(max_memory, max_time)
     opts = {**_first_options(problem, method, tol, zeta_out, options), **options}
     budget = {"max_memory": max_memory, "max_time": max_time}
     attempts = []
@@ -220,12 +224,15 @@ def _work(opts) -> float:
 
 def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, max_time=None, **options):
     """``method="auto"``: the cheapest way to ``tol`` (module docstring)."""
-    from persson_fp.solvers.base import check_float
+    from persson_fp.solvers.base import check_budgets, check_float, check_zeta_out
 
     tol = check_float(tol, "tol", 1e-15, 1e-1, lo_open=False)  # no double-precision result is checkable below
-    budget = {"max_memory": max_memory, "max_time": max_time}
     if options:
         raise TypeError(f"method 'auto' chooses the resolution itself; it takes only tol and zeta_out, got {options}")
+    # checked here, before any attempt: a bad value would otherwise meet auto's own planning first
+    check_zeta_out(problem, zeta_out)
+    check_budgets(max_memory, max_time)
+    budget = {"max_memory": max_memory, "max_time": max_time}
     if problem.has_closed_form:
         why = (
             "a closed form exists: the sine series is that solution summed to tol (spectral; the fastest method "
@@ -236,7 +243,7 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, ma
         except (ValueError, SolverError) as err:
             why = f"the sine series could not serve this scene ({err}); finite volumes with a resolution for tol"
             return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
-    declined = ""
+    declined, cheb_err = "", ""
     if problem.general and not problem.moving_wall:  # (issue 21) the spectral engine, where it applies
         try:
             return _solve_chebyshev(problem, zeta_out, tol, budget)

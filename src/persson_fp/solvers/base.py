@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import difflib
 import functools
+import math
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -174,8 +175,7 @@ class Solver:
                 }
                 raise ValueError(f"method {self.name!r} does not solve {what}; use method={which[need]}")
         self.check = check if check is True or check is False else check_bool(check, "check")
-        self.max_memory = MEMORY_BUDGET if max_memory is None else check_float(max_memory, "max_memory", 0.0)
-        self.max_time = TIME_BUDGET if max_time is None else check_float(max_time, "max_time", 0.0)
+        self.max_memory, self.max_time = check_budgets(max_memory, max_time)
         known = self.OPTIONS.keys()
         for key in list(options):  # (none given: nothing to look up)
             if key in known:
@@ -332,20 +332,7 @@ class Solver:
         return np.array(nodes), stations
 
     def _check_zeta_out(self, zeta_out) -> np.ndarray:
-        zmax = self.problem.zeta_max
-        if zeta_out is None:
-            return np.array([zmax])
-        z = as_float_array(zeta_out, "zeta_out")
-        if z.ndim > 1:
-            raise ValueError(f"zeta_out must be a scalar or a 1-D array, got shape {z.shape}")
-        z = np.atleast_1d(z)
-        if z.size == 0:
-            raise ValueError("zeta_out must hold at least one station")
-        if np.any(z <= 1.0) or np.any(z > zmax * (1 + 1e-12)):
-            raise ValueError(f"zeta_out must lie in (1, zeta_max] = (1, {zmax:.6g}], got {z.min():.6g}..{z.max():.6g}")
-        if np.any(np.diff(z) <= 0):
-            raise ValueError("zeta_out must be strictly increasing")
-        return np.minimum(z, zmax)
+        return check_zeta_out(self.problem, zeta_out)
 
     def zeta_from_V(self, V_target) -> np.ndarray:
         """Magnification at which V reaches ``V_target`` (1 where V <= 0, zeta_max beyond V(zeta_max)).
@@ -467,3 +454,43 @@ class Solver:
             load=out.load,
             stderr_load=out.stderr_load,
         )
+
+
+def check_zeta_out(problem, zeta_out) -> np.ndarray:
+    """The output stations as a strictly increasing 1-D array in (1, zeta_max] (default: [zeta_max]), or a
+    ``ValueError`` naming ``zeta_out`` and the range."""
+    zmax = problem.zeta_max
+    if zeta_out is None:
+        return np.array([zmax])
+    z = as_float_array(zeta_out, "zeta_out")
+    if z.ndim > 1:
+        raise ValueError(f"zeta_out must be a scalar or a 1-D array, got shape {z.shape}")
+    z = np.atleast_1d(z)
+    if z.size == 0:
+        raise ValueError("zeta_out must hold at least one station")
+    if np.any(z <= 1.0) or np.any(z > zmax * (1 + 1e-12)):
+        raise ValueError(f"zeta_out must lie in (1, zeta_max] = (1, {zmax:.6g}], got {z.min():.6g}..{z.max():.6g}")
+    if np.any(np.diff(z) <= 0):
+        raise ValueError("zeta_out must be strictly increasing")
+    return np.minimum(z, zmax)
+
+
+def check_budgets(max_memory, max_time) -> tuple[float, float]:
+    """(max_memory in bytes, max_time in seconds): the defaults for None, ``inf`` for no limit, else a positive
+    float -- or a ``ValueError`` naming the budget and its range (0, inf]."""
+    out = []
+    for value, name, default in ((max_memory, "max_memory", MEMORY_BUDGET), (max_time, "max_time", TIME_BUDGET)):
+        if value is None:
+            out.append(default)
+        elif _is_inf(value):
+            out.append(math.inf)
+        else:
+            out.append(check_float(value, name, 0.0))
+    return out[0], out[1]
+
+
+def _is_inf(value) -> bool:
+    try:
+        return not isinstance(value, (bool, np.bool_, str)) and float(value) == math.inf
+    except (TypeError, ValueError):
+        return False

@@ -140,6 +140,13 @@ class ChebyshevSolver(Solver):
             raise ValueError(
                 "method 'chebyshev': B2 vanishes at the load p_bar (the start cannot spread); use method='fv' or 'mol'"
             )
+        width = math.sqrt(float(np.min(b_at)) * V)
+        if width < 1e-8 * float(np.min(pr.p_bar)):
+            raise ValueError(
+                f"method 'chebyshev': B2 is so small at the load that the PDF stays a spike of width sqrt(B2 V / "
+                f"(dV/dzeta)) = {width:.3g} (below 1e-8 p_bar): no polynomial grid resolves it, and the contact area "
+                "is 1 to within its tails; check the units of B2 (pressure^2 per unit zeta)"
+            )
         hi = pbar + math.sqrt(float(b(np.array([pbar]))[0]) * V) * k
         for _ in range(80):
             if float(co.lamperti_distance(b, np.array(pbar), np.array(hi))) >= need:
@@ -326,6 +333,18 @@ class ChebyshevSolver(Solver):
             "use method='fv'"
         ) from None
 
+    def check_degree_memory(self, n: int) -> None:
+        """Refuse a run at degree ``n`` whose dense matrices would exceed ``max_memory``: a ``ValueError`` naming the
+        estimate, 160 (n + 1)^2 bytes per load + 1 MB (tracemalloc peaks: 12-24 x 8 (n + 1)^2 per load on the
+        exponential path at n = 100-300, 9-14 x on the march)."""
+        need = 160.0 * (n + 1) ** 2 * self.problem.n_loads + 1e6
+        if need > self.max_memory:
+            raise ValueError(
+                f"chebyshev: a run at degree {n} with {self.problem.n_loads} load(s) would need about "
+                f"{need / 2**20:.3g} MiB of memory (estimate), more than max_memory = {self.max_memory / 2**20:.3g} "
+                "MiB; use fewer loads per call, a smaller n_p or a looser tol, or pass a larger max_memory (bytes)"
+            )
+
     def _out_of_time(self, where: str):
         from persson_fp.results.invariants import SolverError
 
@@ -355,6 +374,7 @@ class ChebyshevSolver(Solver):
         while True:
             if time.perf_counter() > self._deadline:
                 self._out_of_time(f"{runs} runs done, degree {n}")
+            self.check_degree_memory(n)
             main, grid_part, start_part = self._three_runs(n, frac, p_max, tol_t)
             runs += 3
             far, balance, t_err = self._far, self._balance, self._time_err

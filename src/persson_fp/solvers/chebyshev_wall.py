@@ -265,6 +265,7 @@ def solve_moving_wall(solver) -> SolverOutput:
     runs = 0
     last_time = math.inf  # the march's part of the last estimate where it was tightened after it
     while True:
+        solver.check_degree_memory(n)
         main = _run(solver, wall, n, frac, tol_t)
         grid_part = _run(solver, wall, max(8, int(round(0.75 * n))), frac, tol_t, main["nodes"])
         start_part = _run(solver, wall, n, 4.0 * frac, tol_t, main["nodes"])
