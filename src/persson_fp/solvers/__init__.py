@@ -143,11 +143,14 @@ def solve(
         finite; :func:`persson_fp.results.solution.check_invariants`): a breach raises
         :class:`~persson_fp.SolverError`; ``False`` turns it into a ``RuntimeWarning``.
     max_memory : float, optional
-        Memory budget in bytes (default ``solvers.base.MEMORY_BUDGET``, 4 GiB): a run estimated to
-        need more is refused with a ``ValueError`` stating the estimate.
+        Memory budget in bytes, in (0, inf] (default ``solvers.base.MEMORY_BUDGET``, 4 GiB; ``inf``: no
+        limit): a run estimated to need more is refused with a ``ValueError`` stating the estimate (chebyshev:
+        before each degree it tries).
     max_time : float, optional
-        Run-time budget in seconds (default ``solvers.base.TIME_BUDGET``, 1 hour), checked the same way
-        for the methods with a time model (fv, chapman-kolmogorov, monte-carlo).
+        Run-time budget in seconds, in (0, inf] (default ``solvers.base.TIME_BUDGET``, 1 hour; ``inf``: no
+        limit), checked the same way for the methods with a time model (fv, chapman-kolmogorov,
+        monte-carlo); the adaptive loops (``tol=``, auto, chebyshev, mol's march) stop with a ``SolverError``
+        naming it when it runs out.
     blas_threads : int or None, default 1
         BLAS threads during the solve (through threadpoolctl, when installed).  One by default: the
         solvers' products are narrow, and a multithreaded BLAS only oversubscribes the cores on them
