@@ -207,3 +207,16 @@ def test_max_memory_refuses_a_large_degree_before_it_runs():
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
     assert peak <= 160.0 * 101**2 + 1e6
+
+
+def test_the_default_tol_is_1e_6_on_the_march_and_1e_8_where_the_exponential_is_exact():
+    # the march at the old default 1e-8 took 34-63 s on this problem without a word (review); 1e-6 takes ~1.5 s
+    pb = 1.83 * SV
+    march = pf.FokkerPlanckProblem(PSD, p_bar=pb, B2=lambda p, z: DV(z) * (1 + 0.2 * (p / pb) * np.log(z)))
+    sol = pf.solve(march, method="chebyshev")
+    assert sol.info["path"] == "magnus" and sol.info["options"]["tol"] == 1e-6
+    assert float(np.max(sol.error_estimate["contact_area"])) <= 1e-6
+    exact_path = pf.FokkerPlanckProblem(PSD, p_bar=pb, B2=lambda p, z: DV(z) * np.ones_like(p))
+    sol = pf.solve(exact_path, method="chebyshev")
+    assert sol.info["path"] == "exponential" and sol.info["options"]["tol"] == 1e-8
+    assert abs(float(sol.contact_area[-1]) - float(erf(pb / np.sqrt(2.0 * PSD.V())))) <= 1e-8

@@ -68,10 +68,12 @@ class ChebyshevSolver(Solver):
 
     Options
     -------
-    tol : float, default 1e-8
+    tol : float or None, default None
         Asked accuracy: the estimated L1 error of P0 and the error of every area at every station (as for ``tol``
         of :func:`persson_fp.solve`); degree, start and march are refined until the estimate meets it
-        (:class:`~persson_fp.SolverError` if it cannot, at degree ``N_MAX``).
+        (:class:`~persson_fp.SolverError` if it cannot, at degree ``N_MAX``).  None: 1e-8 where the exponentials
+        are exact and on a moving wall (milliseconds to a second), 1e-6 on the ``"magnus"`` march of a
+        non-separable coefficient (1.5 s on ``B2 = V'(1 + 0.2 (p/p_bar) ln zeta)``, where 1e-8 took a minute).
     n_p : int or None
         A fixed polynomial degree in [8, 1000] (no adaptation; the estimate is still reported).
     V0_fraction : float or None
@@ -85,11 +87,13 @@ class ChebyshevSolver(Solver):
 
     name = "chebyshev"
     SUPPORTS = frozenset({"general", "hardness", "moving_wall"})
-    OPTIONS = {"tol": 1e-8, "n_p": None, "V0_fraction": None, "k_domain": None, "march": None}
+    OPTIONS = {"tol": None, "n_p": None, "V0_fraction": None, "k_domain": None, "march": None}
+    DEFAULT_TOL, MARCH_DEFAULT_TOL = 1e-8, 1e-6  # (the march's cost grows ~10x a decade of tol)
 
     def validate(self) -> None:
         o, pr = self.opts, self.problem
-        o["tol"] = check_float(o["tol"], "tol", 1e-13, 1e-1)
+        tol_given = o["tol"] is not None
+        o["tol"] = check_float(o["tol"], "tol", 1e-13, 1e-1) if tol_given else self.DEFAULT_TOL
         if o["n_p"] is not None:
             o["n_p"] = check_int(o["n_p"], "n_p", 8, 1000)
         if o["V0_fraction"] is not None:
@@ -116,6 +120,8 @@ class ChebyshevSolver(Solver):
         if o["march"] not in (None, "magnus"):
             raise ValueError(f"march must be None (choose) or 'magnus' (force the adaptive march), got {o['march']!r}")
         self.path = "magnus" if o["march"] else ("exponential" if cf.separable else "clock" if cf.clock else "magnus")
+        if self.path == "magnus" and not tol_given:
+            o["tol"] = self.MARCH_DEFAULT_TOL
 
     # -- the solve ------------------------------------------------------------------------------------
     def _domain(self, tol, V):
@@ -334,9 +340,8 @@ class ChebyshevSolver(Solver):
         ) from None
 
     def check_degree_memory(self, n: int) -> None:
-        """Refuse a run at degree ``n`` whose dense matrices would exceed ``max_memory``: a ``ValueError`` naming the
-        estimate, 160 (n + 1)^2 bytes per load + 1 MB (tracemalloc peaks: 12-24 x 8 (n + 1)^2 per load on the
-        exponential path at n = 100-300, 9-14 x on the march)."""
+        """A ``ValueError`` if a run at degree ``n`` would exceed ``max_memory``: 160 (n + 1)^2 bytes a load + 1 MB
+        (tracemalloc peaks: 12-24 x 8 (n + 1)^2 a load, exponential path, n = 100-300; 9-14 x on the march)."""
         need = 160.0 * (n + 1) ** 2 * self.problem.n_loads + 1e6
         if need > self.max_memory:
             raise ValueError(
