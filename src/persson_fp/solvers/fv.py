@@ -85,6 +85,7 @@ import numpy as np
 from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
 from persson_fp.solvers.engine import estimate as moving_wall_estimate
+from persson_fp.solvers.engine.lines import general_start, singular_step_error
 from persson_fp.solvers.fv_dst import _amplification, _growth, dst_eigenvalues  # noqa: F401
 from persson_fp.solvers.fv_operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
     _BDF2_A,
@@ -452,18 +453,25 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
         scheme = "crank-nicolson" if o["scheme"] == "rannacher" else o["scheme"]
         coupling = "predictor" if o["coupling"] in ("auto", "picard") else o["coupling"]
         damped = o["rannacher_steps"] if o["scheme"] in ("rannacher", "tr-bdf2") else 0
-        return moving_wall_estimate.solve_cells(
-            self,
-            o["n_p"],
-            o["n_steps"],
-            scheme,
-            coupling,
-            damped,
-            o["tau0_fraction"],
-            o["tol"],
-            o["zeta0"],
-            o["k_domain"],
-        )
+        # general coefficients: a start the drift has not carried beyond a wall, and a drift the cells resolve there
+        zeta0 = general_start(self, o["n_p"], o["zeta0"], o["k_domain"], o["tau0_fraction"])
+        try:
+            return moving_wall_estimate.solve_cells(
+                self,
+                o["n_p"],
+                o["n_steps"],
+                scheme,
+                coupling,
+                damped,
+                o["tau0_fraction"],
+                o["tol"],
+                zeta0,
+                o["k_domain"],
+            )
+        except np.linalg.LinAlgError as err:  # LAPACK's banded solve of I - c L (the engine's implicit step)
+            if not self.problem.general:
+                raise
+            raise singular_step_error(self.name, self.problem, f"{type(err).__name__}: {err}") from err
 
     # -- start-up steps shared by the banded and the spectral march -------------------------------------
     def _damped_steps(self) -> int:

@@ -100,7 +100,8 @@ class MethodOfLinesSolver(Solver):
     integrator : str
         ``solve_ivp`` method: "BDF", "Radau", "LSODA", "RK45", "RK23", "DOP853".
     rtol, atol : float
-        ``solve_ivp`` tolerances (atol in 1/pressure, scaled by 1/sqrt(tau_max) if None).
+        ``solve_ivp`` tolerances (atol in 1/pressure, scaled by 1/sqrt(tau_max) if None; on the engine's path, None:
+        rtol x 1e-3 of each load's mass at the start, so that a tiny load keeps its relative accuracy).
     variable : {"tau", "zeta"}
         Independent variable (module docstring).
     initial : {"exact", "delta"}
@@ -118,7 +119,8 @@ class MethodOfLinesSolver(Solver):
     (the strip's load balance); with a fudge factor S sees A_el + A_pl.  A scale-dependent hardness (moving
     wall): the front-fixed finite-volume fluxes of :mod:`persson_fp.solvers.engine.moving_wall` on ``n_p`` cells
     (default 200), integrated in V by ``solve_ivp`` with a banded Jacobian, and the error estimated from a
-    partner run on n_p / 2 cells.
+    partner run on n_p / 2 cells.  General coefficients: a drift the cells next to a wall do not resolve is refused
+    (:func:`~persson_fp.solvers.engine.lines.check_wall_peclet`), and a march whose PDF has drained into a wall stops.
     """
 
     name = "mol"
@@ -165,6 +167,12 @@ class MethodOfLinesSolver(Solver):
         if o["initial"] == "delta" and (o["zeta0"] is not None or o["tau0_fraction"] is not None):
             raise ValueError("zeta0 / tau0_fraction apply to initial='exact' only")
         o["k_domain"] = check_k_domain(o["k_domain"], 1e3)
+
+    def check_load_range(self) -> None:
+        """Any load on the homogenised path; on the engine's the range of ``"fv"``
+        (:func:`~persson_fp.solvers.engine.lines.check_engine_loads`)."""
+        super().check_load_range()
+        moving_wall_lines.check_engine_loads(self)
 
     # -- grid and start ---------------------------------------------------------------------------
     def _grid(self):
@@ -344,7 +352,8 @@ class MethodOfLinesSolver(Solver):
             if o["integrator"] not in ("BDF", "Radau", "LSODA"):
                 raise ValueError("a moving yield wall needs a stiff integrator: 'BDF', 'Radau' or 'LSODA'")
             n = 200 if o["n_p"] is None else o["n_p"]
-            atol = o["atol"] if o["atol"] is not None else o["rtol"] * 1e-3
+            self.check_memory(n)  # (Solver.__init__ skips it while n_p is None, the automatic grid)
+            atol = o["atol"]  # None: rtol x 1e-3 of each load's mass at the start (solve_lines_cells)
             frac = 0.05 if o["tau0_fraction"] is None else o["tau0_fraction"]
             return moving_wall_lines.solve_lines_cells(
                 self, n, o["rtol"], atol, o["integrator"], frac, o["tol"], o["zeta0"], o["k_domain"]
