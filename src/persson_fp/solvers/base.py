@@ -239,7 +239,8 @@ class Solver:
                 r = float(ratio[bad][0])
                 raise ValueError(
                     f"{self.name}: the load p_bar / sqrt(tau(zeta_max)) = {r:.3g} is {side}, where this method "
-                    f"loses its relative accuracy; {_HANDLERS}"
+                    f"loses its relative accuracy; "
+                    + ("method 'chebyshev' handles it (general coefficients)" if pr.general else _HANDLERS)
                 )
 
     def check_memory(self, n_p=None) -> None:
