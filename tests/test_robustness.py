@@ -99,6 +99,23 @@ def test_monotonicity_is_checked_relative_to_a_tiny_area():
     assert checks["breaches"] == [] and checks["area_increase"] == pytest.approx(1e-4, rel=1e-6)
 
 
+def test_an_area_drained_to_round_off_is_not_read_as_growth():
+    """A drift into the wall leaves A* ~ 1e-160 after A* ~ 0.4: its round-off (a growth of 1e-4 of 1e-160) is judged
+    against 1e-13 of the load's largest area, not against itself; the same relative growth of an area that is
+    still a tenth of the largest is a breach."""
+    pr = REF(p_bar_ratio=0.5)
+    zeta = np.array([4.0, 64.0, 128.0])
+    edges, P = _exact_cells(pr, zeta)
+    for level, breach in ((1e-160, False), (0.1, True)):
+        Q = P.copy()
+        Q[1] = P[0] * level
+        Q[2] = P[0] * level * (1.0 + 1e-4)
+        with pytest.warns(RuntimeWarning):
+            sol = _build(pr, zeta, Q, edges, check=False)
+        checks = check_invariants(sol, {"area": 1e-6}, raise_on_breach=False)
+        assert ("area_monotone" in checks["breaches"]) is breach
+
+
 def test_compare_reports_the_relative_area_error():
     """Cell averages scaled by 1 + 1e-3: |dA*|/A* = 1e-3 for every load (the cells hold A* to ~1e-20, the tail
     beyond k = 10 sigma), while |dA*| itself is ~8e-10 for the tiny load."""
