@@ -119,6 +119,7 @@ def test_contact_area_curve_quick(tmp_path):
         assert sum(bool(r["fastest_reaching_1e-06"]) for r in pde) == 1
 
 
+@pytest.mark.slow
 def test_plasticity_quick(tmp_path):
     """The elastoplastic benchmark's quick mode: every scene present, the exact-series scene accurate."""
     rows = _module("plasticity").main(["--quick", "--output", str(tmp_path)])
@@ -232,6 +233,7 @@ def test_general_engine_quick(tmp_path):
                 assert 0.3 < r["L1"] / hand[r["scene"]]["L1"] < 3.0
 
 
+@pytest.mark.slow
 def test_chebyshev_wall_fuzz_quick(tmp_path):
     """chebyshev's moving wall against fv on random problems (quick: 3): no result beyond 2x its estimate, no tol=
     result over tol, every bad input a ValueError."""

@@ -100,6 +100,7 @@ def _cell_bound(sol):
     return 0.05 * (dp / sigma) ** 4 + 5e-5
 
 
+@pytest.mark.slow
 @FAST
 @given(problems())
 def test_sines(pr):
@@ -109,6 +110,7 @@ def test_sines(pr):
         assert sol.compare().max_area_error_rel < 1e-9
 
 
+@pytest.mark.slow
 @FAST
 @given(problems())
 def test_fv(pr):

@@ -22,6 +22,7 @@ import sys
 import warnings
 
 import numpy as np
+import pytest
 
 import persson_fp as pf
 
@@ -188,6 +189,7 @@ def sweep(n, seed):
     return [check_case(rng) for _ in range(n)]
 
 
+@pytest.mark.slow
 def test_chebyshev_estimates_are_honest_small_sample():
     results = sweep(12, seed=7)
     ran = [r for r in results if r[0] is not None]

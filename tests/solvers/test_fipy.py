@@ -18,7 +18,7 @@ def _solve(fudge=None, **opts):
     return pf.solve(pf.ContactProblem.reference(fudge=fudge), method="fipy", zeta_out=ZETA, **opts)
 
 
-@pytest.mark.parametrize("fudge", [None, "YP08"])
+@pytest.mark.parametrize("fudge", [None, pytest.param("YP08", marks=pytest.mark.slow)])
 def test_defaults_meet_promise(fudge):
     """Defaults (CN, n_p=800, 200 steps): promised L1 <= 1e-3; measured ~3e-5 / 6e-5."""
     sol = _solve(fudge)
