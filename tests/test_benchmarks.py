@@ -152,6 +152,7 @@ def test_sweep_quick(tmp_path):
     assert [r["per_core_vs_exact"] for r in ref] == [1.0, 1.0]
 
 
+@pytest.mark.slow
 def test_auto_quick(tmp_path):
     """The auto benchmark's quick mode: auto meets tol wherever a hand-picked run does, with the expected method."""
     rows = _module("auto").main(["--quick", "--output", str(tmp_path)])
@@ -172,6 +173,7 @@ def test_overhead_quick(tmp_path):
     assert "ratio to erf" in (tmp_path / "overhead.md").read_text()
 
 
+@pytest.mark.slow
 def test_batch_scaling_quick(tmp_path):
     """Every method answers the batches; the areas agree with pf.exact (times and memory recorded only)."""
     rows = _module("batch_scaling").main(["--quick", "--output", str(tmp_path)])
@@ -201,6 +203,7 @@ def test_interface_vs_bem_quick(tmp_path):
     assert "Kolmogorov" in (tmp_path / "interface_vs_bem.md").read_text()
 
 
+@pytest.mark.slow
 def test_calibration_vs_bem_quick(tmp_path):
     rows, trans, speed, cov = _module("calibration_vs_bem").main(["--quick", "--output", str(tmp_path)])
     assert (tmp_path / "calibration_vs_bem.md").exists() and (tmp_path / "calibration_speed.csv").exists()

@@ -70,7 +70,14 @@ def test_script_pairs_with_notebook(script):
     )
 
 
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
+_HEAVY = {"05_where_methods_fail.ipynb", "13_calibration.ipynb"}  # (the heavy group: 14-26 s each)
+
+
+@pytest.mark.parametrize(
+    "path",
+    [pytest.param(p, marks=pytest.mark.slow) if p.name in _HEAVY else p for p in NOTEBOOKS],
+    ids=[p.name for p in NOTEBOOKS],
+)
 def test_notebook_executes(path):
     nbformat = pytest.importorskip("nbformat")
     nb = _execute(nbformat.read(path, as_version=4))

@@ -30,6 +30,7 @@ def test_defaults_meet_promise(fudge):
         assert sol.info["sweeps"] >= sol.info["steps"] and sol.info["sweeps_capped"] == 0
 
 
+@pytest.mark.slow
 def test_refinement_and_linear_solvers():
     coarse = _solve("YP08", n_p=100, n_steps=25).compare().max_L1
     fine = _solve("YP08", n_p=200, n_steps=50).compare().max_L1

@@ -23,6 +23,7 @@ def _solve(fudge=None, **opts):
     return pf.solve(pf.ContactProblem.reference(fudge=fudge), method="py-pde", zeta_out=ZETA, **opts)
 
 
+@pytest.mark.slow
 def test_defaults_meet_promise_compiled():
     """Defaults (numba, euler, n_p=800): promised L1 <= 1e-4; measured ~5e-6 (YP08)."""
     sol = _solve("YP08")
