@@ -222,16 +222,18 @@ class Solver:
             tol["load"] = tol["load"] + start
         return tol
 
-    def check_load_range(self) -> None:
-        """Refuse loads outside the method's range of relative accuracy (:data:`LOAD_RATIO_RANGE`).
+    def check_load_range(self, range_of: str | None = None) -> None:
+        """Refuse loads outside the method's range of relative accuracy (:data:`LOAD_RATIO_RANGE`; ``range_of``:
+        another method's range, e.g. ``"fv"``'s for mol on the engine, whose start is fv's cell averages).
 
         The ratio is p_bar / sqrt(tau(zeta_max)) (tau = V without a fudge factor); the message names
         the methods that handle the load.
         """
-        lo, hi = LOAD_RATIO_RANGE.get(self.name, (0.0, np.inf))
+        lo, hi = LOAD_RATIO_RANGE.get(range_of or self.name, (0.0, np.inf))
         if lo <= 0.0 and hi == np.inf:  # no range: every positive load is in it (and nothing to compute)
             return
         pr = self.problem
+        who = "method 'chebyshev' handles it " + ("(general coefficients)" if pr.general else "without a fudge factor")
         scale = pr.tau_max if pr.has_closed_form else pr.V_max  # (no exact tau for a moving wall with S)
         ratio = pr.p_bar / np.sqrt(scale)
         for bad, side in ((ratio < lo, f"below {lo:g}"), (ratio > hi, f"above {hi:g}")):
@@ -239,8 +241,7 @@ class Solver:
                 r = float(ratio[bad][0])
                 raise ValueError(
                     f"{self.name}: the load p_bar / sqrt(tau(zeta_max)) = {r:.3g} is {side}, where this method "
-                    f"loses its relative accuracy; "
-                    + ("method 'chebyshev' handles it (general coefficients)" if pr.general else _HANDLERS)
+                    f"loses its relative accuracy; {who if pr.general or pr.moving_wall else _HANDLERS}"
                 )
 
     def check_memory(self, n_p=None) -> None:

@@ -20,7 +20,6 @@ __all__ = [
     "check_wall_peclet",
     "general_start",
     "singular_step_error",
-    "check_engine_loads",
 ]
 
 START_CLEARANCE = 6.0
@@ -155,26 +154,6 @@ def singular_step_error(name: str, pr, detail: str, p_end: float | None = None) 
         "the implicit step is singular; weaken B1 (the cells must resolve B2 / (2 |B1|), the width of the layer it "
         "makes at a wall)"
     )
-
-
-def check_engine_loads(solver) -> None:
-    """``ValueError`` for a load below ``"fv"``'s range (:data:`~persson_fp.solvers.base.LOAD_RATIO_RANGE`) on the
-    engine's path (moving wall, general coefficients) of ``solver``, in fv's words: the start's cell averages lose
-    such a load to round-off (mol's p_bar = 1e-300 started with no mass and reported A* = 0 with an estimate of 0)."""
-    from persson_fp.solvers.base import LOAD_RATIO_RANGE
-
-    pr = solver.problem
-    if not (pr.moving_wall or pr.general):
-        return
-    lo = LOAD_RATIO_RANGE["fv"][0]
-    ratio = pr.p_bar / np.sqrt(pr.tau_max if pr.has_closed_form else pr.V_max)
-    if np.any(ratio < lo):
-        raise ValueError(
-            f"{solver.name}: the load p_bar / sqrt(tau(zeta_max)) = {float(ratio[ratio < lo][0]):.3g} is below {lo:g}, "
-            "where this method loses its relative accuracy (the cell averages of its start lose the load to round-off,"
-            " as fv's do); method 'chebyshev' handles it"
-            + ("" if pr.general else " without a fudge factor, the closed form pf.exact with a constant hardness")
-        )
 
 
 def general_start(solver, n: int, zeta0, k_domain: float, tau0_fraction: float):
