@@ -72,8 +72,9 @@ class ChebyshevSolver(Solver):
         Asked accuracy: the estimated L1 error of P0 and the error of every area at every station (as for ``tol``
         of :func:`persson_fp.solve`); degree, start and march are refined until the estimate meets it
         (:class:`~persson_fp.SolverError` if it cannot, at degree ``N_MAX``).  None: 1e-8 where the exponentials
-        are exact and on a moving wall (milliseconds to a second), 1e-6 on the ``"magnus"`` march of a
-        non-separable coefficient (1.5 s on ``B2 = V'(1 + 0.2 (p/p_bar) ln zeta)``, where 1e-8 took a minute).
+        are exact and on a moving wall, 1e-6 on the ``"magnus"`` march of a non-separable coefficient, whose cost
+        grows ~5-8x a decade of tol (``benchmarks/results/general_engine_wide.md``: 1e-4 / 1e-5 / 1e-6 in 0.10 /
+        0.73 / 4.0 s on ``B2 = V'(1 + 0.2 (p/p_bar) ln zeta)``).
     n_p : int or None
         A fixed polynomial degree in [8, 1000] (no adaptation; the estimate is still reported).
     V0_fraction : float or None
@@ -88,7 +89,7 @@ class ChebyshevSolver(Solver):
     name = "chebyshev"
     SUPPORTS = frozenset({"general", "hardness", "moving_wall"})
     OPTIONS = {"tol": None, "n_p": None, "V0_fraction": None, "k_domain": None, "march": None}
-    DEFAULT_TOL, MARCH_DEFAULT_TOL = 1e-8, 1e-6  # (the march's cost grows ~10x a decade of tol)
+    DEFAULT_TOL, MARCH_DEFAULT_TOL = 1e-8, 1e-6  # (the march's cost grows ~5-8x a decade of tol)
 
     def validate(self) -> None:
         o, pr = self.opts, self.problem
