@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 import persson_fp as pf
-import persson_fp.solvers.fv_spectral as fv_spectral
+import persson_fp.solvers.fv.spectral as fv_spectral
 
 CASES = [
     # (fudge, scheme, space, stepping, n_p, n_steps)

@@ -34,7 +34,7 @@ from scipy.integrate import quad
 from scipy.special import ndtr
 
 import persson_fp as pf
-from persson_fp.solvers.engine import magnus
+from persson_fp.solvers.chebyshev import magnus
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)

@@ -65,6 +65,12 @@ def as_positive_scalar(value, name: str, *, allow_zero: bool = False) -> float:
 def as_float_array(value, name: str) -> np.ndarray:
     """Return ``value`` as a finite float array, else raise ``ValueError`` (complex, bool and string
     values are refused rather than cast)."""
+    kind = type(value)
+    if (kind is np.ndarray and value.dtype == np.float64) or kind is float or kind is np.float64:
+        a = np.asarray(value, dtype=float)  # the common case: nothing to refuse (the same array for a float64 one)
+        if not np.all(np.isfinite(a)):
+            raise ValueError(f"{name} must be finite everywhere (got NaN or inf)")
+        return a
     _refuse_non_real(value, name)
     if isinstance(value, (list, tuple)):
         try:
@@ -88,7 +94,8 @@ def check_in_range(a, name: str, lo: float, hi: float, *, rtol: float = 1e-12) -
     Values outside by no more than ``rtol`` relative (round-off from a caller's
     arithmetic, e.g. ``q_s / q_l``) are clipped onto the interval.
     """
-    a = as_float_array(a, name)
+    if not (type(a) is np.ndarray and a.dtype == np.float64 and np.all(np.isfinite(a))):  # else: as it is
+        a = as_float_array(a, name)
     slack_lo = rtol * max(abs(lo), 1.0)
     slack_hi = rtol * max(abs(hi), 1.0)
     if np.any(a < lo - slack_lo) or np.any(a > hi + slack_hi):

@@ -5,7 +5,7 @@ import pytest
 from scipy.special import erf
 
 import persson_fp as pf
-from persson_fp.solvers.chapman_kolmogorov import _cell_erfc, _kernel_lags
+from persson_fp.solvers.markov.chapman_kolmogorov import _cell_erfc, _kernel_lags
 
 CK = "chapman-kolmogorov"
 

@@ -20,7 +20,7 @@ from scipy.integrate import solve_ivp
 from scipy.special import ndtr
 
 import persson_fp as pf
-from persson_fp.solvers.engine import magnus
+from persson_fp.solvers.chebyshev import magnus
 
 from .test_chebyshev_honesty import _ou_case, poly_cell_masses
 

@@ -1,4 +1,4 @@
-"""The moving yield wall on method "chebyshev" (persson_fp.solvers.chebyshev_wall), against independent references:
+"""The moving yield wall on method "chebyshev" (persson_fp.solvers.chebyshev.wall), against independent references:
 the exact strip (a wall that barely moves) and fv's front-fixed finite volumes at fine resolution, Richardson-
 extrapolated (second order, measured in benchmarks/plasticity.py), whose own uncertainty is added to the tolerance."""
 
@@ -158,9 +158,9 @@ def test_readme_scene_against_extrapolated_fv():
 def test_fourth_order_in_V_where_beta_is_constant():
     # scene B has beta = 2 sigma_Y d sigma_Y / dV constant (sigma_Y sigma_Y' and V' both ~ zeta^-0.6): the march on
     # fixed geometric steps converges at 4th order (measured 3.93, 3.99, 4.00 for 8 ... 64 steps against 256)
-    from persson_fp.solvers import chebyshev_wall as cw
     from persson_fp.solvers._threads import blas_threads
     from persson_fp.solvers.chebyshev import ChebyshevSolver
+    from persson_fp.solvers.chebyshev import wall as cw
 
     solver = ChebyshevSolver(scene_b(), tol=1e-6)
     solver._deadline = None

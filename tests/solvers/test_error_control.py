@@ -138,7 +138,7 @@ def test_auto_picks_a_resolution_the_engine_accepts():
     """The README's moving-wall scene: the engine demands n_p >= 53; auto's first attempt must be above that
     (before: n_p = 50 and a ValueError)."""
     from persson_fp.solvers.auto import _first_options
-    from persson_fp.solvers.engine.moving_wall import min_cells
+    from persson_fp.solvers.front_fixed.moving_wall import min_cells
 
     psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=128.0)
     pr = pf.ContactProblem(psd, p_bar=0.3, hardness=pf.hardness.PowerLaw(sigma_1=1.0, n=0.2))

@@ -10,17 +10,16 @@ from scipy import fft
 
 import persson_fp as pf
 from persson_fp.solvers.fv import (
-    SCHEMES,
-    SPACES,
     FiniteVolumeSolver,
-    _amplification,
-    _growth,
     apply_mass,
     apply_operator,
     banded_operator,
     dst_eigenvalues,
     rhs,
 )
+from persson_fp.solvers.fv.dst import _amplification, _growth
+from persson_fp.solvers.fv.operators import SPACES
+from persson_fp.solvers.schemes import SCHEMES
 
 FUDGES = [None, "YP08", "WM17"]
 

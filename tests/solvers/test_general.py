@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 import persson_fp as pf
-from persson_fp.solvers.engine.lines import solve_lines
-from persson_fp.solvers.engine.moving_wall import MovingWall
+from persson_fp.solvers.front_fixed.moving_wall import MovingWall
+from persson_fp.solvers.mol.lines import solve_lines
 
 C, D, EPS = 0.3, 0.8, 0.5  # drift, diffusion and its slope (dimensionless, times V')
 PSD = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=64.0)

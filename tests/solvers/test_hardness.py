@@ -62,7 +62,7 @@ def _order(values):
 def test_moving_wall_is_second_order_in_p_and_in_zeta():
     """Front fixing keeps second order: with the start fixed and the other resolution fine, the differences
     of A_pl fall 4x per refinement (measured 4.05/4.01 in p, 4.0/4.0 in zeta), fitted order within 0.1 of 2."""
-    from persson_fp.solvers.engine.moving_wall import MovingWall
+    from persson_fp.solvers.front_fixed.moving_wall import MovingWall
 
     pr = _moving()
     V = pr.V(np.array([10.0]))
@@ -110,7 +110,7 @@ def test_moving_wall_with_fudge_factor_and_tolerance(monkeypatch):
 def test_moving_wall_engine_reproduces_the_strip_for_a_constant_hardness():
     """The general engine with beta = 0 (a fixed yield wall) against the exact strip series: 2nd order
     (measured errors 4.9e-5, 1.3e-5, 3.3e-6 at n = n_steps = 100, 200, 400)."""
-    from persson_fp.solvers.engine.moving_wall import MovingWall
+    from persson_fp.solvers.front_fixed.moving_wall import MovingWall
 
     pr = pf.ContactProblem.reference(p_bar_ratio=np.array([0.3, 1.0]), hardness=SIGMA)
     z = np.array([4.0, 32.0, 128.0])

@@ -12,7 +12,7 @@ import scipy.sparse as sp
 from scipy.integrate import solve_ivp
 from scipy.sparse.linalg import spsolve
 
-from persson_fp.solvers.engine import ivp_march as _ivp_march
+from persson_fp.solvers.mol import ivp_march as _ivp_march
 from persson_fp.solvers.mol import laplacian
 
 

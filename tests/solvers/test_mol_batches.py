@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import persson_fp as pf
-from persson_fp.solvers import mol
+from persson_fp.solvers.mol import solver as mol
 
 
 @pytest.mark.parametrize("fudge", [None, "YP08"])

@@ -5,8 +5,8 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import persson_fp as pf
-from persson_fp.solvers import sines_taumap
 from persson_fp.solvers.sines import SineSeriesSolver, image_area, modes_needed, series_area, series_pdf
+from persson_fp.solvers.sines import taumap as sines_taumap
 
 ZETA_OUT = [1.5, 10.0, 128.0]
 

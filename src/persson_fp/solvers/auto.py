@@ -12,7 +12,7 @@ r"""``method="auto"`` and ``tol=``: ask for an accuracy, not a method.
   B2 = b(p) g(zeta), B1 = c(p) g(zeta), an adaptive exponential march in V otherwise; where it declines (e.g.
   its march would need more than its step limit) the problem falls through:
 * **A moving wall without a fudge factor, tol < 3e-7** (``_CHEB_WALL_TOL``): ``"chebyshev"`` on its front-fixed
-  Magnus march (:mod:`persson_fp.solvers.chebyshev_wall`), at most ``_CHEB_WALL_TIME`` seconds; where it declines or
+  Magnus march (:mod:`persson_fp.solvers.chebyshev.wall`), at most ``_CHEB_WALL_TIME`` seconds; where it declines or
   runs out of time, ``"fv"`` as below (looser tols go to fv directly: there it is the faster).
 * **No closed form** (a scale-dependent hardness, general coefficients): ``"fv"`` on the front-fixed engine,
   n_p = n_steps = n from the error models measured in ``benchmarks/plasticity.py`` and ``benchmarks/auto.py``
@@ -38,6 +38,7 @@ import time
 import numpy as np
 
 from persson_fp.results.solution import SolverError
+from persson_fp.solvers.registry import get_solver
 
 __all__ = ["solve_auto", "solve_to_tol", "MAX_REFINE"]
 
@@ -57,7 +58,7 @@ station (the engine itself refuses fewer than one; with one or two a moving wall
 measured on the README's moving-wall scene at 66 cells)."""
 _CHEB_WALL_TOL = 3e-7
 """A moving wall without a fudge factor goes to ``"chebyshev"`` first below this tol (its front-fixed Magnus march,
-:mod:`persson_fp.solvers.chebyshev_wall`): above it the second-order ``fv`` is the faster one (scene D of
+:mod:`persson_fp.solvers.chebyshev.wall`): above it the second-order ``fv`` is the faster one (scene D of
 ``benchmarks/plasticity.py``: fv 43 ms for 1e-6, chebyshev 0.14 s; for 1e-8 fv 3.4 s, chebyshev 1.5 s)."""
 _CHEB_WALL_TIME = 20.0
 """Seconds the chebyshev attempt on a moving wall may take before auto falls back to fv (where its march loses order
@@ -82,16 +83,9 @@ def _errors(sol):
     return L1, area, "estimate (" + str(est.get("method", "|run - half-resolution run|")) + ")"
 
 
-def _attempt(problem, method, zeta_out, options, budget):
-    from persson_fp.solvers import get_solver
-
-    return get_solver(method)(problem, zeta_out=zeta_out, **budget, **options).run()
-
-
 def _min_engine_cells(problem, method, zeta_out, options) -> int:
     """Cells for the front-fixed engine's first attempt: ``_CELLS_PER_WIDTH`` x the fewest it accepts, even."""
-    from persson_fp.solvers import get_solver
-    from persson_fp.solvers.engine.moving_wall import min_cells
+    from persson_fp.solvers.front_fixed.moving_wall import min_cells
 
     k = options.get("k_domain", get_solver(method).OPTIONS.get("k_domain", 10.0))
     z = problem.zeta_max if zeta_out is None else zeta_out
@@ -164,7 +158,7 @@ def solve_to_tol(
             budget["max_time"] = left
         t_try = time.perf_counter()
         try:
-            sol = _attempt(problem, method, zeta_out, opts, budget)
+            sol = get_solver(method)(problem, zeta_out=zeta_out, **budget, **opts).run()
         except SolverError as err:  # an invariant breached (e.g. ringing on a coarse grid): refine, unless the last
             if k == MAX_REFINE or "max_time" in str(err):
                 raise
@@ -187,8 +181,6 @@ def solve_to_tol(
         opts = _refine(method, opts, problem, max(L1, area) / tol)
         far = sol.info.get("error_estimate", {}).get("parts", {}).get("far_wall", 0.0)
         if far > 0.25 * tol:  # the far wall took mass that matters: grow the domain (and the cells with it)
-            from persson_fp.solvers import get_solver
-
             k = float(opts.get("k_domain", get_solver(method).OPTIONS.get("k_domain", 10.0)))
             opts["k_domain"] = 1.5 * k
             opts["n_p"] = 2 * int(math.ceil(1.5 * opts["n_p"] / 2))
@@ -286,10 +278,8 @@ def _solve_chebyshev(problem, zeta_out, tol, budget):
     an adaptive exponential march otherwise; its own loop meets ``tol`` -- 5-25 ms for 1e-4 ... 1e-10 on the
     reference problem in ``benchmarks/results/general_engine.md``, where fv needs seconds for 1e-6; the
     zeta-dependent and hardness cases in ``benchmarks/results/general_engine_wide.md``)."""
-    from persson_fp.solvers.chebyshev import ChebyshevSolver
-
     t0 = time.perf_counter()
-    sol = ChebyshevSolver(problem, zeta_out=zeta_out, tol=min(tol, 1e-1), **budget).run()
+    sol = get_solver("chebyshev")(problem, zeta_out=zeta_out, tol=min(tol, 1e-1), **budget).run()
     L1, area, kind = _errors(sol)
     what = (
         "a moving yield wall, front-fixed (x = p / sigma_Y): Chebyshev collocation in x, an adaptive exponential "

@@ -59,7 +59,7 @@ Below 1e-10 the cell averages of the finite-volume and Chapman--Kolmogorov metho
 round-off (measured: 7e-4 relative A* error at 1e-14, 93 % at 1e-20); 'sines' and pf.exact are exact
 there.  Large loads are refused by the grid-resolution checks with the same hint."""
 
-_HANDLERS = "method 'sines' (p_bar / sqrt(tau) up to about 2e3) or the closed form pf.exact (any load) handle it"
+LOAD_HANDLERS = "method 'sines' (p_bar / sqrt(tau) up to about 2e3) or the closed form pf.exact (any load) handle it"
 
 MEMORY_BUDGET = 4 * 2**30
 """Default ``max_memory`` (bytes) of a solve: 4 GiB.  Override per call, ``pf.solve(..., max_memory=...)``."""
@@ -241,7 +241,7 @@ class Solver:
                 r = float(ratio[bad][0])
                 raise ValueError(
                     f"{self.name}: the load p_bar / sqrt(tau(zeta_max)) = {r:.3g} is {side}, where this method "
-                    f"loses its relative accuracy; {who if pr.general or pr.moving_wall else _HANDLERS}"
+                    f"loses its relative accuracy; {who if pr.general or pr.moving_wall else LOAD_HANDLERS}"
                 )
 
     def check_memory(self, n_p=None) -> None:
@@ -379,7 +379,7 @@ class Solver:
             raise ValueError(
                 f"{self.name}: the first output station zeta = {self.zeta_out[0]:.6g} is not resolved by the grid "
                 f"(sqrt(tau) = {np.sqrt(tau_first):.3e} < {MIN_SIGMA_CELLS:g} cells of {dp:.3e}); "
-                f"raise {what} by a factor >= {grow:.3g} or start zeta_out later; {_HANDLERS}"
+                f"raise {what} by a factor >= {grow:.3g} or start zeta_out later; {LOAD_HANDLERS}"
             )
 
     def initial_cell_averages(self, edges):
@@ -402,7 +402,7 @@ class Solver:
             return 1.0, 0.0, P, np.ones(pr.n_loads)
         self.check_resolved(float(np.max(dp)))
         z0 = self.start_zeta(o["zeta0"], o["tau0_fraction"], dp=float(np.max(dp)))
-        ex = self.exact_at(z0)
+        ex = exact(self.problem, np.atleast_1d(z0))
         F = np.asarray(ex.cdf_contact(edges)).reshape(pr.n_loads, -1)
         P = np.ascontiguousarray(np.diff(F, axis=-1) / dp)
         A = np.asarray(ex.contact_area, dtype=float).reshape(pr.n_loads)

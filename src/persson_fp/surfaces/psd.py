@@ -174,9 +174,29 @@ class PSD:
         """
         raise NotImplementedError
 
+    def moment_unchecked(self, k: float, z) -> np.ndarray:
+        r"""Spectral moment :math:`\int_{q_l}^{z q_l} q^k C(q)\,dq` at magnifications already checked.
+
+        The kernel behind :meth:`moment` for a solver's inner loop: ``z`` must be a float array (or float) in
+        ``[1, zeta_max]``; nothing is checked.  A subclass that writes only :meth:`moment` gets the checked one.
+        """
+        return self.moment(k, z)
+
     # -- derived quantities -------------------------------------------------
-    def _zeta(self, zeta):
-        return self.zeta_max if zeta is None else self.check_zeta(zeta)
+    def _zeta(self, zeta):  # (check_zeta's check, one call less: it runs on every checked evaluation)
+        return self.zeta_max if zeta is None else check_in_range(zeta, "zeta", 1.0, self.zeta_max)
+
+    def V_unchecked(self, z, E_star: float) -> np.ndarray:
+        """:meth:`V` at magnifications ``z`` already checked (a float array in [1, zeta_max]) and a checked modulus
+        ``E_star`` (a float > 0): the kernel for a solver's inner loop, nothing validated (pressure^2)."""
+        with np.errstate(over="ignore"):
+            return 0.25 * np.float64(E_star) ** 2 * (2.0 * np.pi * self.moment_unchecked(3, z))
+
+    def dV_dzeta_unchecked(self, z, E_star: float) -> np.ndarray:
+        """:meth:`dV_dzeta` at magnifications ``z`` already checked (a float array in [1, zeta_max]) and a checked
+        modulus ``E_star``: the kernel for a solver's inner loop, nothing validated (pressure^2)."""
+        q = np.asarray(z, dtype=float) * self.q_l
+        return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(q)
 
     def h2(self, zeta: ArrayLike | None = None) -> np.ndarray:
         r"""Mean-square height :math:`\langle h^2\rangle(\zeta) = 2\pi\int q C\,dq` (``eq:Vh_closed_form``).
@@ -237,8 +257,9 @@ class PSD:
             V at each ``zeta``.
         """
         E_star = np.float64(as_positive_scalar(E_star, "E_star"))
+        m = self.moment_unchecked(3, self._zeta(zeta))
         with np.errstate(over="ignore"):  # out of range -> inf (ContactProblem refuses it), never OverflowError
-            return 0.25 * E_star**2 * self.grad2(zeta)
+            return 0.25 * E_star**2 * (2.0 * np.pi * m)
 
     def zeta_of_V(self, V: ArrayLike, E_star: float = 1.0) -> np.ndarray:
         """Magnification at which the complete-contact variance reaches ``V``.
@@ -260,7 +281,7 @@ class PSD:
         """
         E_star = np.float64(as_positive_scalar(E_star, "E_star"))
         V = np.asarray(as_float_array(V, "V"), dtype=float)
-        M_max = float(self.moment(3))
+        M_max = float(self.moment_unchecked(3, self.zeta_max))
         with np.errstate(over="ignore"):
             M = np.clip(V / (0.5 * np.pi * E_star**2), 0.0, M_max)
         z = np.clip(self.moment_inverse(3, M) / self.q_l, 1.0, self.zeta_max)
@@ -307,9 +328,7 @@ class PSD:
             q = min(max(zeta, 1.0), self.zeta_max) * self.q_l
             q = np.float64(q)
             return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(float(q))
-        z = np.asarray(self._zeta(zeta), dtype=float)
-        q = z * self.q_l
-        return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(q)
+        return self.dV_dzeta_unchecked(self._zeta(zeta), E_star)
 
     def elastic_energy_complete(self, zeta: ArrayLike | None = None, E_star: float = 1.0) -> np.ndarray:
         r"""Elastic energy per nominal area at complete contact.
@@ -474,7 +493,11 @@ class SelfAffinePSD(PSD):
         numpy.ndarray, length^(3-k)
             The moment at each ``zeta``.
         """
-        z = np.asarray(self._zeta(zeta), dtype=float)
+        return self.moment_unchecked(k, self._zeta(zeta))
+
+    def moment_unchecked(self, k: float, z) -> np.ndarray:
+        """:meth:`moment` at magnifications already checked (a float array in [1, zeta_max]): nothing validated."""
+        z = np.asarray(z, dtype=float)
         q_hi = z * self.q_l
         q_mid = np.minimum(q_hi, self.q_r)
         plateau = self.C0 * np.power(np.float64(self.q_r), -2.0 * (1.0 + self.H)) * powint(self.q_l, q_mid, k + 1.0)

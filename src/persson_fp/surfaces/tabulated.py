@@ -209,7 +209,11 @@ class TabulatedPSD(PSD):
         numpy.ndarray, length^(3-k)
             The moment at each ``zeta``.
         """
-        z = np.asarray(self._zeta(zeta), dtype=float)
+        return self.moment_unchecked(k, self._zeta(zeta))
+
+    def moment_unchecked(self, k: float, z) -> np.ndarray:
+        """:meth:`moment` at magnifications already checked (a float array in [1, zeta_max]): nothing validated."""
+        z = np.asarray(z, dtype=float)
         q_hi = z * self.q_l
         nodes, seg, cum = self._band(k)  # q_l, the table points strictly inside, q_s
         j = np.clip(np.searchsorted(nodes, q_hi, side="right") - 1, 0, nodes.size - 2)

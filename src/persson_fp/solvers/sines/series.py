@@ -2,7 +2,7 @@ r"""Persson's sine series on [0, L] and its image dual (Xu et al. tutorial, Eq. 
 and PDF of the series, the mode count for a tolerance, and the quadrature and sine bases used to evaluate them.
 
 The solver that uses them is :mod:`persson_fp.solvers.sines` (where the series, its error and the dual form are
-described); the effective-variance map with a fudge factor is :mod:`persson_fp.solvers.sines_taumap`.
+described); the effective-variance map with a fudge factor is :mod:`persson_fp.solvers.sines.taumap`.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 r"""The general finite-volume engine: conservative fluxes on a cell grid, wall objects, time integrators.
 
-The DST fast path of ``"fv"`` (``persson_fp.solvers.fv_spectral``) is exact only for the constant-coefficient
+The DST fast path of ``"fv"`` (``persson_fp.solvers.fv.spectral``) is exact only for the constant-coefficient
 heat equation between two fixed absorbing walls.  Everything else -- a moving yield wall, and (in time)
 p-dependent coefficients -- is solved here, in conservative form on ``n`` uniform cells of a coordinate
 :math:`x \in [0, 1]`:
@@ -24,8 +24,8 @@ conserved to round-off by any linear time integrator; ``step`` advances it with 
 order; Bank et al. 1985) or a θ-scheme, with the operator re-assembled at each stage time, and accumulates the
 flux through x = 0 with the same stage weights so that the balance closes exactly (``step``).
 
-This module knows nothing of contact mechanics: :mod:`persson_fp.solvers.engine.moving_wall` maps the moving yield wall
-onto it.
+This module knows nothing of contact mechanics: :mod:`~persson_fp.solvers.front_fixed.moving_wall` maps the moving
+yield wall onto it.
 """
 
 from __future__ import annotations
@@ -35,15 +35,15 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import get_lapack_funcs
 
+from persson_fp.solvers.schemes import TRBDF2_A as _BDF2_A
+from persson_fp.solvers.schemes import TRBDF2_B as _BDF2_B
+from persson_fp.solvers.schemes import TRBDF2_GAMMA as GAMMA
+from persson_fp.solvers.schemes import TRBDF2_W as _BDF2_W
+
 _gbsv = get_lapack_funcs("gbsv", dtype=np.float64)
 
 __all__ = ["AbsorbingWall", "YieldWall", "Coefficients", "assemble", "apply", "step", "outflux_low", "GAMMA"]
 
-GAMMA = 2.0 - np.sqrt(2.0)
-"""TR-BDF2 stage fraction (both stages share one matrix)."""
-_BDF2_A = 1.0 / (GAMMA * (2.0 - GAMMA))
-_BDF2_B = (1.0 - GAMMA) ** 2 / (GAMMA * (2.0 - GAMMA))
-_BDF2_W = (1.0 - GAMMA) / (2.0 - GAMMA)
 LOWER, UPPER = 2, 1
 """Bandwidths of L in ``solve_banded`` form."""
 

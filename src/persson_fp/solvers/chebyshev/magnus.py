@@ -1,7 +1,7 @@
 r"""Adaptive fourth-order exponential stepping of a stacked linear system dy/dV = A(V) y, with an error estimate.
 
 For Fokker--Planck coefficients that are *not* of the form b(p) dV/dzeta the collocated operator of
-:mod:`persson_fp.solvers.engine.collocation` depends on V, and the exact single exponential of the separable case
+:mod:`persson_fp.solvers.chebyshev.collocation` depends on V, and the exact single exponential of the separable case
 becomes a march.  Each step is the commutator-free fourth-order exponential integrator with two Gauss points
 (Blanes & Moan, Appl. Numer. Math. 56 (2006) 1519; Thalhammer, SIAM J. Numer. Anal. 44 (2006) 851), a
 Magnus-type method without the commutator:

@@ -4,23 +4,15 @@ Readable flux form (:func:`rhs`), its tridiagonal matrix (:func:`banded_operator
 compact 4th-order mass matrix (:func:`apply_mass`, ``SPACES``), the batched tridiagonal solver (``_Tridiag``)
 and the TR-BDF2 constants, and the scheme table (``SCHEMES``: θ, order, L-stability and default coupling of each
 θ-scheme; ``COUPLINGS``, ``LINALGS``).  The scheme is described in :mod:`persson_fp.solvers.fv`; the spectral fast
-path that diagonalises these operators exactly is in :mod:`persson_fp.solvers.fv_spectral` and ``fv_dst``.
+path that diagonalises these operators exactly is in :mod:`persson_fp.solvers.fv.spectral` and ``fv_dst``.
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import lapack
 
 __all__ = ["rhs", "wall_flux", "banded_operator", "apply_operator", "apply_mass", "SPACES"]
-
-_GAMMA = 2.0 - np.sqrt(2.0)
-"""TR-BDF2 stage fraction; makes the trapezoidal and BDF2 matrices equal."""
-_BDF2_A = 1.0 / (_GAMMA * (2.0 - _GAMMA))
-_BDF2_B = (1.0 - _GAMMA) ** 2 / (_GAMMA * (2.0 - _GAMMA))
-_BDF2_W = (1.0 - _GAMMA) / (2.0 - _GAMMA)  # = GAMMA / 2
 
 
 # -- the readable operator and the fast one ------------------------------------------------------
@@ -175,27 +167,6 @@ def march_result(P_out, A_out, Af_out, JN_out, JN, r_max, dtau_total, counters: 
         "counters": counters,
     }
 
-
-# -- the scheme table: a scheme is data -----------------------------------------------------------
-@dataclass(frozen=True)
-class _Scheme:
-    theta: float
-    """Implicitness θ of the θ-step (TR-BDF2: θ of its first stage)."""
-    order: int
-    """Order in τ."""
-    l_stable: bool
-    coupling: str
-    """Default coupling of the fudge factor (see the module docstring)."""
-
-
-SCHEMES = {
-    "explicit": _Scheme(theta=0.0, order=1, l_stable=False, coupling="lagged"),
-    "implicit": _Scheme(theta=1.0, order=1, l_stable=True, coupling="lagged"),
-    "crank-nicolson": _Scheme(theta=0.5, order=2, l_stable=False, coupling="predictor"),
-    "rannacher": _Scheme(theta=0.5, order=2, l_stable=False, coupling="predictor"),
-    "tr-bdf2": _Scheme(theta=0.5, order=2, l_stable=True, coupling="predictor"),
-}
-"""Scheme name -> θ, order in τ, L-stability and default coupling."""
 
 COUPLINGS = ("auto", "lagged", "predictor", "picard")
 LINALGS = ("auto", "dst", "banded")

@@ -50,8 +50,8 @@ from __future__ import annotations
 import numpy as np
 
 from persson_fp.results.solution import DEFAULT_TOLERANCES, InstabilityError
-from persson_fp.solvers.fv_dst import _amplification, _growth, _Spectral, dst_eigenvalues
-from persson_fp.solvers.fv_operators import march_result
+from persson_fp.solvers.fv.dst import _amplification, _growth, _Spectral, dst_eigenvalues
+from persson_fp.solvers.fv.operators import march_result
 from persson_fp.theory.fudge import NoFudge
 
 __all__ = ["dst_eigenvalues", "SpectralPath"]

@@ -1,21 +1,21 @@
 """Where ``"fv"`` puts its steps: node placement in V from the closed-form effective variance (a mixin).
 
 "graded" (the default): uniform in s = T + g ln T with T = tau (or, with a constant hardness, tau saturating on the
-strip's time scale sigma_Y^2), g = ``_GRADE`` T_max: geometric while tau is small, uniform later; "tau", "geometric"
-and "zeta" as in :class:`~persson_fp.solvers.fv.FiniteVolumeSolver`'s options.  Every output station is a node.
+strip's time scale sigma_Y^2), g = ``GRADE`` T_max (:mod:`persson_fp.solvers.schemes`): geometric while tau is small,
+uniform later; "tau", "geometric" and "zeta" as in :class:`~persson_fp.solvers.fv.FiniteVolumeSolver`'s options.
+Every output station is a node.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from persson_fp.solvers.schemes import GRADE, graded
 from persson_fp.theory.fudge import NoFudge
 
 __all__ = ["STEPPINGS", "SteppingNodes"]
 
 STEPPINGS = ("geometric", "zeta", "tau", "graded")
-_GRADE = 0.05
-"""'graded' stepping: uniform in s = tau + _GRADE tau_max ln(tau) (geometric below _GRADE tau_max, uniform above)."""
 
 
 class SteppingNodes:
@@ -41,8 +41,8 @@ class SteppingNodes:
             if o["stepping"] == "graded":  # (the offset 1e-3 g keeps a delta start, tau = 0, finite)
                 tau_st = s
                 warp = self._warp()
-                g = _GRADE * float(warp(tau_st[-1]))
-                s = warp(tau_st) + g * np.log(warp(tau_st) + 1e-3 * g)
+                g = GRADE * float(warp(tau_st[-1]))
+                s = graded(warp(tau_st), float(warp(tau_st[-1])), offset=1e-3)
         lengths = np.diff(s)
         n_seg = len(lengths)
         counts = np.maximum(1, np.round(o["n_steps"] * lengths / max(s[-1] - s[0], 1e-300)).astype(int))
@@ -62,7 +62,7 @@ class SteppingNodes:
             elif o["stepping"] == "graded":  # uniform in s within the segment, mapped to tau fractions
                 ta, tb = tau_st[i], tau_st[i + 1]
                 tt = ta + np.geomspace(1e-3 * g, tb - ta + 1e-3 * g, 513) - 1e-3 * g
-                ss = warp(tt) + g * np.log(warp(tt) + 1e-3 * g)
+                ss = graded(warp(tt), float(warp(tau_st[-1])), offset=1e-3)
                 tau_t = np.interp(s[i] + t * (s[i + 1] - s[i]), ss, tt)
                 V = self._uniform_tau_nodes(Va, Vb, (tau_t - ta) / max(tb - ta, 1e-300))
             else:

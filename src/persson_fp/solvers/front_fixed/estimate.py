@@ -18,10 +18,9 @@ import warnings
 import numpy as np
 
 from persson_fp.results.solution import SolverError
-from persson_fp.solvers.engine.moving_wall import MovingWall, check_resolved, domain_end
-from persson_fp.theory.fudge import NoFudge
+from persson_fp.solvers.front_fixed.moving_wall import MovingWall, check_resolved, domain_end
 
-__all__ = ["richardson", "solve_cells", "run_pair", "finish", "STATION_FLOOR", "LARGE_ESTIMATE"]
+__all__ = ["richardson", "run_pair", "finish", "STATION_FLOOR", "LARGE_ESTIMATE"]
 
 STATION_FLOOR = 0.1
 """General coefficients: no station's error estimate is below this fraction of its neighbours' (:func:`finish`)."""
@@ -37,65 +36,34 @@ def richardson(fine: dict, coarse: dict, order: float = 2.0) -> dict:
     return {q: np.abs(fine[q] - coarse[q]) / f for q in _QUANTITIES}
 
 
-def solve_cells(
-    solver,
-    n: int,
-    n_steps: int,
-    scheme: str,
-    coupling: str,
-    damped: int,
-    tau0_fraction: float,
-    tol,
-    zeta0=None,
-    k_domain: float = 10.0,
-):
-    """The moving-wall run of ``"fv"``: (n, n_steps) and its Richardson partner (n/2, n_steps/2)."""
-    pr = solver.problem
-    fine, coarse = run_pair(
-        solver,
-        n,
-        zeta0,
-        k_domain,
-        lambda mw, V_st, V0, level: mw.solve(
-            V_st, max(n_steps // 2**level, 2), scheme, coupling, damped, tau0_fraction, V0
-        ),
-    )
-    what = f"|Q(n_p, n_steps) - Q(n_p/2, n_steps/2)|, n_p = {n}, n_steps = {n_steps} (conservative)"
-    info = {
-        "steps": fine["steps"],
-        "scheme": scheme,
-        "coupling": "exact (S = 1)" if isinstance(pr.fudge, NoFudge) else coupling,
-    }
-    return finish(solver, n, fine, coarse, what, tol, info)
-
-
-def run_pair(solver, n: int, zeta0, k_domain: float, run):
-    """The run at n cells and its partner at n/2 from the same start: ``run(mw, V_st, V0, level)`` (level 0, 1)
-    returns the per-station dict of :meth:`MovingWall.solve`; the resolution is checked first.
+def run_pair(problem, V_st, zeta_st, n: int, zeta0, k_domain: float, run, max_time: float = np.inf):
+    """The run at n cells and its partner at n/2 from the same start: ``run(mw, V_st, V0=V0, level=level)`` (level 0, 1)
+    returns the per-station dict of :meth:`MovingWall.solve`; the resolution of the stations (V_st, zeta_st) is checked
+    first, and every run stops with a ``SolverError`` once ``max_time`` seconds have passed.
 
     General coefficients: the start (a frozen-coefficient Gaussian) is not exact, and a partner that shares it
     cannot see its error.  A third run at n/2 from twice the start-up variance measures it:
     ``fine["start_error"] = |Q(n/2, 2 V0) - Q(n/2, V0)|`` (an upper bound for a start error of order >= 1 in V0;
     the two coarse runs share their grid, so their difference is the start alone)."""
-    pr = solver.problem
-    V_st = np.asarray(solver.V_out, dtype=float)
+    pr = problem
+    V_st = np.asarray(V_st, dtype=float)
     p_end, dom = (None, None) if pr.hardness is not None else domain_end(pr, k_domain)
-    check_resolved(pr, V_st, n, solver.zeta_out, k_domain, p_end)
-    deadline = time.perf_counter() + float(getattr(solver, "max_time", np.inf))
+    check_resolved(pr, V_st, n, zeta_st, k_domain, p_end)
+    deadline = time.perf_counter() + float(max_time)
 
     def grid(cells):
         mw = MovingWall(pr, cells, k_domain, p_end)
         mw.deadline = deadline
         return mw
 
-    fine = run(grid(n), V_st, _start_V(pr, zeta0), 0)
-    coarse = run(grid(max(n // 2, 4)), V_st, fine["V0"], 1)
+    fine = run(grid(n), V_st, V0=_start_V(pr, zeta0), level=0)
+    coarse = run(grid(max(n // 2, 4)), V_st, V0=fine["V0"], level=1)
     fine["domain"] = dom
     if pr.general:
         V1 = 2.0 * fine["V0"]
         if V1 >= 0.5 * V_st[0]:  # no room before the first station: start earlier instead
             V1 = 0.5 * fine["V0"]
-        other = run(grid(max(n // 2, 4)), V_st, V1, 1)
+        other = run(grid(max(n // 2, 4)), V_st, V0=V1, level=1)
         fine["start_error"] = {q: np.abs(other[q] - coarse[q]) for q in _QUANTITIES}
         fine["start_error"]["L1"] = np.abs(other["W"] - coarse["W"]).sum(axis=-1) / coarse["W"].shape[-1]
         fine["start_V"] = (fine["V0"], V1)
@@ -113,11 +81,11 @@ def _start_V(pr, zeta0):
     return V0
 
 
-def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra: dict):
-    """Checks, error estimate and the :class:`~persson_fp.solvers.base.SolverOutput` of a moving-wall run."""
-    from persson_fp.solvers.base import SolverOutput
-
-    pr = solver.problem
+def finish(problem, n: int, fine: dict, coarse: dict, what: str, tol, info_extra: dict, name: str) -> dict:
+    """Checks and error estimate of a paired run of the engine, and what the method hands on: a dict with the fields
+    of :class:`~persson_fp.results.SolverOutput` (p, P0, weights, kind, info and the areas); ``name`` (the method's)
+    heads a warning."""
+    pr = problem
     est = richardson(fine, coarse, order=1.0)  # conservative: exact for first order, 3x over at second
     Wf, Wc = fine["W"], coarse["W"]
     if Wf.shape[-1] == 2 * Wc.shape[-1]:  # L1 of P: the fine cells averaged in pairs onto the coarse grid
@@ -182,7 +150,7 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
             "n_steps, or ask for an accuracy with tol="
         )
         info_extra = {**info_extra, "warnings": [msg]}
-        warnings.warn(f"{solver.name}: {msg}", RuntimeWarning, stacklevel=4)
+        warnings.warn(f"{name}: {msg}", RuntimeWarning, stacklevel=6)  # (the caller of pf.solve)
     s = fine["s"]
     p = s[:, None] * (np.arange(n) + 0.5)[None, :] / n
     info = {
@@ -202,7 +170,7 @@ def finish(solver, n: int, fine: dict, coarse: dict, what: str, tol, info_extra:
         **({"domain": fine["domain"]} if fine.get("domain") else {}),
         **({"start_V": fine["start_V"]} if "start_V" in fine else {}),
     }
-    return SolverOutput(
+    return dict(
         p=p,
         P0=fine["W"] / s[:, None, None],
         weights=np.broadcast_to((s * (1.0 / n))[:, None], p.shape).copy(),

@@ -5,8 +5,8 @@ Solves the Fokker--Planck form of Persson's equation (Xu et al. tutorial, Eq. 'E
 :class:`~persson_fp.ContactProblem`) with absorbing walls at p = 0 and p_max -- or, with a constant hardness, at
 p = 0 and the yield stress sigma_Y, where the mass absorbed is the plastic area A_pl (Persson, Phys. Rev. Lett. 87
 (2001) 116101).  In the variable V the equation is :math:`\partial_V P = \tfrac12\partial_p^2(bP) -
-\partial_p(cP)` with b = B2 / V', c = B1 / V' (:mod:`persson_fp.solvers.chebyshev_coefficients`), discretised by
-mapped Chebyshev collocation in p (:mod:`persson_fp.solvers.engine.collocation`: spectral, faster than any power of
+\partial_p(cP)` with b = B2 / V', c = B1 / V' (:mod:`persson_fp.solvers.chebyshev.coefficients`), discretised by
+mapped Chebyshev collocation in p (:mod:`persson_fp.solvers.chebyshev.collocation`: spectral, faster than any power of
 n_p where P is smooth).  Two paths, named in ``info["path"]``:
 
 * ``"exponential"`` -- b and c independent of V (B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta: the homogenised theory,
@@ -15,10 +15,10 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   g): the separable form in the clock tau = int s dV (quadrature), one exponential over its increment, exact.
 * ``"magnus"`` -- anything else (a zeta-dependent b(p, zeta), a drift c(p, zeta) that does not scale with it):
   adaptive fourth-order commutator-free exponential (Magnus-type) steps in V, step doubling for the step size and
-  a companion march at the doubled steps for the estimate (:mod:`persson_fp.solvers.engine.magnus`), tightened
+  a companion march at the doubled steps for the estimate (:mod:`persson_fp.solvers.chebyshev.magnus`), tightened
   when it dominates the estimate; ``info["march"]`` counts the steps, rejected steps and exponentials.
 * ``"moving-wall"`` -- a scale-dependent hardness (no fudge factor): front-fixed in x = p / sigma_Y, the wall value
-  beta A_pl lifted, the same kind of march (:mod:`persson_fp.solvers.chebyshev_wall`, which has its own estimate).
+  beta A_pl lifted, the same kind of march (:mod:`persson_fp.solvers.chebyshev.wall`, which has its own estimate).
 
 Every station starts afresh from the small-time expansion at V0 = V0_fraction x V (with the coefficients at V0/2
 on the Magnus path, the midpoint of [0, V0]; images across both walls).
@@ -50,9 +50,9 @@ import numpy as np
 from scipy.special import ndtr
 
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
-from persson_fp.solvers.chebyshev_coefficients import Coefficients
-from persson_fp.solvers.engine import collocation as co
-from persson_fp.solvers.engine.magnus import magnus_march
+from persson_fp.solvers.chebyshev import collocation as co
+from persson_fp.solvers.chebyshev.coefficients import Coefficients
+from persson_fp.solvers.chebyshev.magnus import magnus_march
 
 __all__ = ["ChebyshevSolver"]
 
@@ -105,8 +105,8 @@ class ChebyshevSolver(Solver):
                 raise ValueError(
                     f"k_domain must lie in [5, 100], got {o['k_domain']!r}: the far wall would absorb load"
                 )
-        if pr.moving_wall:  # front-fixed, on the Magnus march (persson_fp.solvers.chebyshev_wall)
-            from persson_fp.solvers.chebyshev_wall import check_wall_problem
+        if pr.moving_wall:  # front-fixed, on the Magnus march (persson_fp.solvers.chebyshev.wall)
+            from persson_fp.solvers.chebyshev.wall import check_wall_problem
 
             check_wall_problem(self)
             self.path = "moving-wall"
@@ -362,11 +362,13 @@ class ChebyshevSolver(Solver):
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
         if pr.moving_wall:
-            from persson_fp.solvers.chebyshev_wall import solve_moving_wall
+            from persson_fp.solvers.chebyshev.wall import solve_moving_wall
 
             return solve_moving_wall(self)
         tol = o["tol"]
-        doms = [self._domain(tol, float(V)) for V in self.V_out]  # a far wall per station
+        doms = []
+        for V in self.V_out:  # a far wall per station (a loop, not a comprehension: one frame less below it)
+            doms.append(self._domain(tol, float(V)))
         p_max, k = np.array([d[0] for d in doms]), doms[0][1]
         n, frac = self._start_of(tol)
         n = o["n_p"] or n

@@ -58,6 +58,7 @@ grows like n_p^2 (the stability study).
 
 from __future__ import annotations
 
+import functools
 import gc
 import time
 
@@ -66,10 +67,12 @@ import scipy.sparse as sp
 from scipy.special import erf
 
 from persson_fp.results.solution import SolverError
-from persson_fp.solvers.base import _HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
-from persson_fp.solvers.engine import ivp_march as _ivp_march
-from persson_fp.solvers.engine import lines as moving_wall_lines
-from persson_fp.solvers.mol_grid import MOLSystem, laplacian, laplacian_readable, quadrature_weights, start_pdf, start_V
+from persson_fp.solvers.base import LOAD_HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
+from persson_fp.solvers.front_fixed.estimate import finish, run_pair
+from persson_fp.solvers.front_fixed.start import general_start
+from persson_fp.solvers.mol import ivp_march as _ivp_march
+from persson_fp.solvers.mol.grid import MOLSystem, laplacian, laplacian_readable, quadrature_weights, start_pdf, start_V
+from persson_fp.solvers.mol.lines import solve_lines
 from persson_fp.theory.fudge import NoFudge
 
 __all__ = ["MethodOfLinesSolver", "laplacian", "quadrature_weights", "MOLSystem"]
@@ -117,10 +120,11 @@ class MethodOfLinesSolver(Solver):
 
     A constant hardness: the domain is [0, sigma_Y] (absorbing yield wall) and A_pl = (p_bar - F_el)/sigma_Y
     (the strip's load balance); with a fudge factor S sees A_el + A_pl.  A scale-dependent hardness (moving
-    wall): the front-fixed finite-volume fluxes of :mod:`persson_fp.solvers.engine.moving_wall` on ``n_p`` cells
+    wall): the front-fixed finite-volume fluxes of :mod:`persson_fp.solvers.front_fixed.moving_wall` on ``n_p`` cells
     (default 200), integrated in V by ``solve_ivp`` with a banded Jacobian, and the error estimated from a
     partner run on n_p / 2 cells.  General coefficients: a drift the cells next to a wall do not resolve is refused
-    (:func:`~persson_fp.solvers.engine.lines.check_wall_peclet`), and a march whose PDF has drained into a wall stops.
+    (:func:`~persson_fp.solvers.front_fixed.start.check_wall_peclet`), and a
+    march whose PDF has drained into a wall stops.
     """
 
     name = "mol"
@@ -188,7 +192,7 @@ class MethodOfLinesSolver(Solver):
                 raise ValueError(
                     f"mol: the first station zeta = {self.zeta_out[0]:.6g} needs n_p = {need:.3g} grid points "
                     f"(> {_N_P_AUTO_MAX}) to resolve sqrt(tau) = {np.sqrt(tau_first):.3e} on [0, {L:.3e}]; "
-                    f"start zeta_out later, use closer loads, or {_HANDLERS}"
+                    f"start zeta_out later, use closer loads, or {LOAD_HANDLERS}"
                 )
             o["n_p"] = int(max(need, 16))
         self.check_memory(o["n_p"])
@@ -346,6 +350,23 @@ class MethodOfLinesSolver(Solver):
         y0 = np.concatenate([P0.ravel(), V0_l])
         return MOLSystem(fun, fun_readable, jac, y0, t0, t1, nl, m, True)
 
+    def _solve_on_engine(self, n: int, rtol: float, atol, integrator: str, frac: float) -> SolverOutput:
+        """A moving wall or general coefficients: the front-fixed engine's fluxes on n cells, integrated in V by
+        :func:`~persson_fp.solvers.mol.lines.solve_lines`, and its partner at n/2 (time by ``rtol``).  ``atol`` None:
+        rtol x 1e-3 of each load's mass in play at the start (``solve_lines``'s ``per_mass``)."""
+        pr, o = self.problem, self.opts
+        stations = (self.zeta_out, self.V_out)
+        zeta0 = general_start(pr, stations, n, o["zeta0"], o["k_domain"], frac, self.name)
+        per_mass = atol is None
+        atol = rtol * 1e-3 if per_mass else atol
+        run = functools.partial(
+            solve_lines, rtol=rtol, atol=atol, integrator=integrator, tau0_fraction=frac, per_mass=per_mass
+        )
+        fine, coarse = run_pair(pr, self.V_out, self.zeta_out, n, zeta0, o["k_domain"], run, self.max_time)
+        what = f"|Q(n_p) - Q(n_p/2)|, n_p = {n}, rtol = {rtol:g} (conservative in p; time by rtol)"
+        info = {"steps": fine["steps"], "integrator": integrator, "nfev": fine["nfev"], "njev": fine["njev"]}
+        return SolverOutput(**finish(pr, n, fine, coarse, what, o["tol"], info, self.name))
+
     # -- the solve --------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
         pr = self.problem
@@ -357,9 +378,7 @@ class MethodOfLinesSolver(Solver):
             self.check_memory(n)  # (Solver.__init__ skips it while n_p is None, the automatic grid)
             atol = o["atol"]  # None: rtol x 1e-3 of each load's mass at the start (solve_lines_cells)
             frac = 0.05 if o["tau0_fraction"] is None else o["tau0_fraction"]
-            return moving_wall_lines.solve_lines_cells(
-                self, n, o["rtol"], atol, o["integrator"], frac, o["tol"], o["zeta0"], o["k_domain"]
-            )
+            return self._solve_on_engine(n, o["rtol"], atol, o["integrator"], frac)
         if pr.n_loads > _LOADS_PER_CHUNK and o["variable"] == "tau":
             return self._solve_in_chunks()
         sysm = self.system()

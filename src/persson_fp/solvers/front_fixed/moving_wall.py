@@ -15,7 +15,7 @@ domain as the wall moves out.  No closed form exists.
 .. math::  \partial_\tau w = \partial_x\Big(\frac{1}{2s^2}\partial_x w + \frac{\dot s}{s}\,x\,w\Big),
            \qquad w(0) = 0, \qquad w(1) = 2 s\dot s\,A_{pl}, \qquad \frac{dA_{pl}}{d\tau} = G(1),
 
-G being the flux through x = 1: exactly the engine's yield wall (:mod:`persson_fp.solvers.engine.fluxes`) with
+G being the flux through x = 1: exactly the engine's yield wall (:mod:`persson_fp.solvers.front_fixed.fluxes`) with
 :math:`\beta = 2s\dot s`.  The independent variable is V (known in closed form along the spectrum), so with
 :math:`d\tau = S\,dV`: :math:`D = S/(2s^2)`, :math:`v = (s_V/s)\,x`, :math:`\beta = 2 s s_V / S`,
 :math:`s_V = \sigma_Y'(\zeta)/V'(\zeta)`.  Second order in x and V on a fixed grid, no cut cells; the areas balance
@@ -27,7 +27,7 @@ to round-off; the load balance is met to the discretisation error (reported).
 
 *Error estimate.*  No closed form, so each run is paired with one at half the cells and half the steps;
 the Richardson estimate of the fine run's error for every area and load at every station
-(``info["error_estimate"]``; :mod:`persson_fp.solvers.engine.estimate`, which adds the start-up and far-wall parts
+(``info["error_estimate"]``; :mod:`persson_fp.solvers.front_fixed.estimate`, which adds the start-up and far-wall parts
 for general coefficients); the observed order is measured in the tests and in ``benchmarks/plasticity.py``.
 """
 
@@ -39,15 +39,13 @@ import numpy as np
 
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.solution import SolverError
-from persson_fp.solvers.engine import fluxes as engine
-from persson_fp.solvers.engine.domain import coefficient_domain
+from persson_fp.solvers.front_fixed import fluxes as engine
+from persson_fp.solvers.front_fixed.domain import coefficient_domain
+from persson_fp.solvers.schemes import graded
 from persson_fp.theory.fudge import NoFudge
 from persson_fp.theory.strip import strip_cdf, strip_quantities
 
 __all__ = ["MovingWall", "min_cells", "check_resolved", "domain_end"]
-
-_GRADE = 0.05
-"""Steps uniform in u = V + _GRADE V_end ln V (geometric while V is small, then uniform)."""
 
 
 class MovingWall:
@@ -71,7 +69,7 @@ class MovingWall:
         self.general = problem.general
         self.elastic = ContactProblem(problem.psd, problem.E_star, problem.p_bar, problem.fudge)
         # without a hardness the far wall is the end of the numerical domain (what it absorbs is reported as lost);
-        # general coefficients: sized from B1 and B2 themselves (persson_fp.solvers.engine.domain)
+        # general coefficients: sized from B1 and B2 themselves (persson_fp.solvers.front_fixed.domain)
         if problem.hardness is not None:
             self.p_end = None
         elif p_end is not None:
@@ -95,9 +93,9 @@ class MovingWall:
         if pr.hardness is None:
             V = np.atleast_1d(np.asarray(V, dtype=float))
             return np.full(V.shape, self.p_end), np.zeros(V.shape)
-        z = self.zeta(V)
+        z = np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))  # in [1, zeta_max]
         s = pr.hardness.sigma(z)
-        dV = pr.dV_dzeta(z)
+        dV = pr.psd.dV_dzeta_unchecked(z, pr.E_star)
         sV = np.where(dV > 0, pr.hardness.dsigma_dzeta(z) / np.where(dV > 0, dV, 1.0), 0.0)
         return s, sV
 
@@ -120,7 +118,11 @@ class MovingWall:
         """Engine coefficients at V with the fudge factor frozen at ``S_bar`` (m,)."""
         if self.general:
             return self._general_coefficients(V)
-        s, sV = self.wall(V)
+        hit = self._cache.get(V)  # (wall(V), one call less: this runs at every right-hand side)
+        if hit is None:
+            s_, sV_ = self.wall_many(np.array([V]))
+            hit = self._cache[V] = (float(s_[0]), float(sV_[0]))
+        s, sV = hit
         m = self.problem.n_loads
         S_bar = np.broadcast_to(np.asarray(S_bar, dtype=float), (m,))
         D = (S_bar / (2.0 * s * s))[:, None] * np.ones(self.n + 1)
@@ -234,16 +236,16 @@ class MovingWall:
 
     @staticmethod
     def nodes(V0: float, V_st: np.ndarray, n_steps: int):
-        """V nodes from V0 through every station (graded, see ``_GRADE``) and the station indices."""
+        """V nodes from V0 through every station (graded: :func:`persson_fp.solvers.schemes.graded`) and the station
+        indices."""
         V_all = np.concatenate(([V0], V_st))
-        g = _GRADE * V_all[-1]
-        u = V_all + g * np.log(V_all)
+        u = graded(V_all, V_all[-1])
         counts = np.maximum(1, np.round(n_steps * np.diff(u) / (u[-1] - u[0])).astype(int))
         pieces, idx = [np.array([V0])], []
         for i in range(V_st.size):
             uu = np.linspace(u[i], u[i + 1], counts[i] + 1)[1:]
             Vg = np.geomspace(V_all[i], V_all[i + 1], 2049)
-            ug = Vg + g * np.log(Vg)
+            ug = graded(Vg, V_all[-1])
             seg = np.interp(uu, ug, Vg)
             seg[-1] = V_all[i + 1]
             pieces.append(seg)
@@ -368,7 +370,7 @@ def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0, p_end
 
 def domain_end(problem, k_domain: float):
     """(p_end, info) of the far wall without a hardness: from the coefficients for a general problem
-    (:func:`~persson_fp.solvers.engine.domain.coefficient_domain`), else max(p_bar) + k sqrt(tau)."""
+    (:func:`~persson_fp.solvers.front_fixed.domain.coefficient_domain`), else max(p_bar) + k sqrt(tau)."""
     if problem.general:
         return coefficient_domain(problem, k_domain)
     p_end = float(problem.p_max(k_domain))

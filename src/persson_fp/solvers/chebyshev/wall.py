@@ -1,7 +1,7 @@
 r"""The moving yield wall on the spectral engine: method ``"chebyshev"`` for a scale-dependent hardness.
 
 The physics (Persson, Phys. Rev. Lett. 87 (2001) 116101; Surf. Sci. Rep. 61 (2006) 201, Sec. 3) and the front
-fixing are those of :mod:`persson_fp.solvers.engine.moving_wall`: with :math:`s(V) = \sigma_Y(\zeta(V))`,
+fixing are those of :mod:`persson_fp.solvers.front_fixed.moving_wall`: with :math:`s(V) = \sigma_Y(\zeta(V))`,
 :math:`x = p/s \in [0, 1]` and the mass density :math:`w(x, V) = s\,P(sx, V)`, the diffusion equation of the Xu et al.
 tutorial (Eq. 'E:diffusion_equ', no fudge factor: S = 1, so V is the effective variance) becomes
 
@@ -12,12 +12,12 @@ with :math:`dA_{pl}/dV = -(D\,\partial_x w + v w)(1)` (the flux out through the 
 :math:`F_{el} + \sigma_Y A_{pl} = \bar p` is what fixes the wall value) and :math:`dA_{non}/dV = D\,\partial_x w(0)`.
 :math:`s_V = \sigma_Y'(\zeta) / V'(\zeta)` (1 / pressure).
 
-*Discretisation.*  Chebyshev collocation in x on the sinh-mapped grid of :mod:`persson_fp.solvers.engine.collocation`
+*Discretisation.*  Chebyshev collocation in x on the sinh-mapped grid of :mod:`persson_fp.solvers.chebyshev.collocation`
 (clustered around the start p_bar / s and at both walls).  The wall value is lifted, :math:`w = u + \beta A_{pl}\,x`
 with u = 0 at both walls (``_operator``), so the state :math:`y = [u(x_1 \dots x_{n-1}), A_{pl}, A_{non}]` obeys a
 *linear* system :math:`dy/dV = A(V)\,y` whose operator depends on V through s, s_V and :math:`\beta'` only (linear
 because S = 1; a fudge factor S(A) would make it nonlinear and is declined).  It is marched by the commutator-free
-fourth-order exponential step of :mod:`persson_fp.solvers.engine.magnus` with its step control (step doubling, a
+fourth-order exponential step of :mod:`persson_fp.solvers.chebyshev.magnus` with its step control (step doubling, a
 companion march at the doubled steps for the estimate; ``magnus_march``), the partner runs replaying the main run's
 steps (``nodes=``) and refused early by its pace in ln V (``refusal="pace"``).  Where beta is constant in V
 (sigma_Y sigma_Y' proportional to V': sigma_Y ~
@@ -50,8 +50,8 @@ import numpy as np
 
 from persson_fp.results.invariants import SolverError
 from persson_fp.solvers.base import SolverOutput
-from persson_fp.solvers.engine import collocation as co
-from persson_fp.solvers.engine.magnus import magnus_march
+from persson_fp.solvers.chebyshev import collocation as co
+from persson_fp.solvers.chebyshev.magnus import magnus_march
 from persson_fp.theory.strip import strip_quantities
 
 __all__ = ["check_wall_problem", "solve_moving_wall", "N_MAX_WALL"]

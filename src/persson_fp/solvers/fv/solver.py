@@ -15,7 +15,7 @@ and the fudge factor only decides how large :math:`\Delta\tau` is for a given :m
 *Space.*  ``n_p`` cells of width :math:`\Delta p = p_{max}/n_p` on :math:`[0, p_{max}]`, unknowns the
 cell averages :math:`\bar P_i`.  The flux through face :math:`i+\tfrac12` is
 :math:`F_{i+1/2} = -\tfrac12(\bar P_{i+1}-\bar P_i)/\Delta p` and
-:math:`d\bar P_i/d\tau = -(F_{i+1/2}-F_{i-1/2})/\Delta p` (:func:`rhs`).  Both walls absorb
+:math:`d\bar P_i/d\tau = -(F_{i+1/2}-F_{i-1/2})/\Delta p` (:func:`~persson_fp.solvers.fv.rhs`).  Both walls absorb
 (:math:`P_0 = 0` at the face): ghost values :math:`\bar P_{-1} = -\bar P_0`,
 :math:`\bar P_{n_p} = -\bar P_{n_p-1}`.  Because the exact solution is odd about p = 0
 (image solution, ``eq:P0_solution``), the ghost cell *is* the cell average of the odd extension,
@@ -26,7 +26,7 @@ to round-off and :math:`A^*(\zeta_0) - J_0` is reported as ``contact_area_flux``
 loss :math:`J_{max}` is reported in ``info["far_wall_mass"]``.  The load ``eq:Load_equilibrium``
 is conserved by the p = 0 wall exactly, so its drift measures the far-wall and truncation error.
 
-*Time.*  A θ-step with the tridiagonal operator :math:`L` (:func:`banded_operator`),
+*Time.*  A θ-step with the tridiagonal operator :math:`L` (:func:`~persson_fp.solvers.fv.banded_operator`),
 
 .. math::  (I - \theta\,\Delta\tau\,L)\,P^{n+1} = (I + (1-\theta)\,\Delta\tau\,L)\,P^n ,
 
@@ -84,17 +84,12 @@ import numpy as np
 
 from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
-from persson_fp.solvers.engine import estimate as moving_wall_estimate
-from persson_fp.solvers.engine.lines import general_start, singular_step_error
-from persson_fp.solvers.fv_dst import _amplification, _growth, dst_eigenvalues  # noqa: F401
-from persson_fp.solvers.fv_operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
-    _BDF2_A,
-    _BDF2_B,
-    _BDF2_W,
-    _GAMMA,
+from persson_fp.solvers.front_fixed.estimate import finish, run_pair
+from persson_fp.solvers.front_fixed.start import general_start, singular_step_error
+from persson_fp.solvers.fv.dst import _amplification, _growth, dst_eigenvalues  # noqa: F401
+from persson_fp.solvers.fv.operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
     COUPLINGS,
     LINALGS,
-    SCHEMES,
     SPACES,
     _tri_matvec,
     _Tridiag,
@@ -105,8 +100,13 @@ from persson_fp.solvers.fv_operators import (  # noqa: F401  (re-exported: the o
     rhs,
     wall_flux,
 )
-from persson_fp.solvers.fv_spectral import SpectralPath
-from persson_fp.solvers.fv_stepping import STEPPINGS, SteppingNodes
+from persson_fp.solvers.fv.spectral import SpectralPath
+from persson_fp.solvers.fv.stepping import STEPPINGS, SteppingNodes
+from persson_fp.solvers.schemes import SCHEMES
+from persson_fp.solvers.schemes import TRBDF2_A as _BDF2_A
+from persson_fp.solvers.schemes import TRBDF2_B as _BDF2_B
+from persson_fp.solvers.schemes import TRBDF2_GAMMA as _GAMMA
+from persson_fp.solvers.schemes import TRBDF2_W as _BDF2_W
 from persson_fp.theory.fudge import NoFudge
 from persson_fp.theory.image import tail_mass
 
@@ -227,7 +227,7 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
     # -- the run ---------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
-        if pr.moving_wall or pr.general:  # the general engine (persson_fp.solvers.engine.moving_wall, .engine)
+        if pr.moving_wall or pr.general:  # the general engine (persson_fp.solvers.front_fixed.moving_wall, .engine)
             return self._solve_moving_wall()
         scheme = SCHEMES[o["scheme"]]
         coupling = scheme.coupling if o["coupling"] == "auto" else o["coupling"]
@@ -454,24 +454,28 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
         coupling = "predictor" if o["coupling"] in ("auto", "picard") else o["coupling"]
         damped = o["rannacher_steps"] if o["scheme"] in ("rannacher", "tr-bdf2") else 0
         # general coefficients: a start the drift has not carried beyond a wall, and a drift the cells resolve there
-        zeta0 = general_start(self, o["n_p"], o["zeta0"], o["k_domain"], o["tau0_fraction"])
+        pr = self.problem
+        zeta0 = general_start(
+            pr, (self.zeta_out, self.V_out), o["n_p"], o["zeta0"], o["k_domain"], o["tau0_fraction"], self.name
+        )
+        n, n_steps, frac = o["n_p"], o["n_steps"], o["tau0_fraction"]
+
+        def run(mw, V_st, V0, level):  # the pair: (n, n_steps) and (n/2, n_steps/2)
+            return mw.solve(V_st, max(n_steps // 2**level, 2), scheme, coupling, damped, frac, V0)
+
         try:
-            return moving_wall_estimate.solve_cells(
-                self,
-                o["n_p"],
-                o["n_steps"],
-                scheme,
-                coupling,
-                damped,
-                o["tau0_fraction"],
-                o["tol"],
-                zeta0,
-                o["k_domain"],
-            )
+            fine, coarse = run_pair(pr, self.V_out, self.zeta_out, n, zeta0, o["k_domain"], run, self.max_time)
         except np.linalg.LinAlgError as err:  # LAPACK's banded solve of I - c L (the engine's implicit step)
-            if not self.problem.general:
+            if not pr.general:
                 raise
-            raise singular_step_error(self.name, self.problem, f"{type(err).__name__}: {err}") from err
+            raise singular_step_error(self.name, pr, f"{type(err).__name__}: {err}") from err
+        what = f"|Q(n_p, n_steps) - Q(n_p/2, n_steps/2)|, n_p = {n}, n_steps = {n_steps} (conservative)"
+        info = {
+            "steps": fine["steps"],
+            "scheme": scheme,
+            "coupling": "exact (S = 1)" if isinstance(pr.fudge, NoFudge) else coupling,
+        }
+        return SolverOutput(**finish(pr, n, fine, coarse, what, o["tol"], info, self.name))
 
     # -- start-up steps shared by the banded and the spectral march -------------------------------------
     def _damped_steps(self) -> int:

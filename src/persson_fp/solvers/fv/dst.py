@@ -1,8 +1,8 @@
 r"""The DST-II basis of the ``"fv"`` solver's spectral fast path: the eigenvalues of its operators, the transform,
 and the amplification factors of the θ-schemes and TR-BDF2 in that basis.
 
-The march that uses them is :mod:`persson_fp.solvers.fv_spectral`; the operators they diagonalise are in
-:mod:`persson_fp.solvers.fv_operators`.
+The march that uses them is :mod:`persson_fp.solvers.fv.spectral`; the operators they diagonalise are in
+:mod:`persson_fp.solvers.fv.operators`.
 """
 
 from __future__ import annotations
@@ -10,7 +10,11 @@ from __future__ import annotations
 import numpy as np
 from scipy import fft as _fft
 
-from persson_fp.solvers.fv_operators import _BDF2_A, _BDF2_B, _BDF2_W, _GAMMA, SPACES
+from persson_fp.solvers.fv.operators import SPACES
+from persson_fp.solvers.schemes import TRBDF2_A as _BDF2_A
+from persson_fp.solvers.schemes import TRBDF2_B as _BDF2_B
+from persson_fp.solvers.schemes import TRBDF2_GAMMA as _GAMMA
+from persson_fp.solvers.schemes import TRBDF2_W as _BDF2_W
 
 
 # -- the spectral fast path: L and M are diagonal in the DST-II basis ------------------------------

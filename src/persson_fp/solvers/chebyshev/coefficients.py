@@ -8,7 +8,7 @@ In the variance-like variable V (dV = V'(zeta) dzeta) the Fokker--Planck equatio
 Where b and c do not depend on V (B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta: the homogenised theory, any
 pressure-dependent diffusion of that form) the collocated operator is constant and one exponential propagates it
 exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver marches it with adaptive Magnus
-steps (:mod:`persson_fp.solvers.engine.magnus`). The form is detected by sampling b and c on 33 pressures at 9
+steps (:mod:`persson_fp.solvers.chebyshev.magnus`). The form is detected by sampling b and c on 33 pressures at 9
 magnifications (relative tolerance 1e-9), and confirmed: the separable form by an adaptive quadrature in zeta (int
 B2(p*, zeta) / b(p*) dzeta must be V(zeta_max)), the clock form at 129 magnifications. A third form is exact too: b
 = s(V) b(p, V_max), c = s(V) c(p, V_max) (a zeta-dependent factor common to both, e.g. B2 = b(p) g(zeta) with any
@@ -116,7 +116,7 @@ class Coefficients:
     def _per_V(self, p, z):
         """(c or None, b) per unit V at pressures ``p`` and magnification ``z``."""
         pr = self.problem
-        g = float(pr.dV_dzeta(z))
+        g = float(pr.psd.dV_dzeta_unchecked(z, pr.E_star))  # (z from the spectrum's inverse: in range)
         if pr.general:
             B1, B2 = pr.coefficients(p, z)
             return (B1 / g if self.problem.B1_fun is not None else None), B2 / g

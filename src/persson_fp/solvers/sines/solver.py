@@ -28,9 +28,11 @@ nodes of [0, L] with their weights, spectrally accurate for the load and
 variance integrals that :class:`~persson_fp.Solution` forms from the weights.
 
 **Fudge factors** (``eq:new_B2``).  tau(zeta) must come from the *numerical* area of the series,
-:math:`d\tau/dV = S(A_h(\tau))`, where :math:`A_h` is :func:`series_area` with the solve's N modes
+:math:`d\tau/dV = S(A_h(\tau))`, where :math:`A_h` is :func:`~persson_fp.solvers.sines.series_area` with the solve's
+N modes
 for :math:`\tau \ge \max(\tau_N, \tau_{sw})` (:math:`\tau_N`: where they are converged to ``tol``) and the
-infinite series below, summed as its exact Poisson dual :func:`image_area` (both clipped to [0, 1]; below
+infinite series below, summed as its exact Poisson dual :func:`~persson_fp.solvers.sines.image_area` (both clipped to
+[0, 1]; below
 :math:`\tau_{sw}` that is 1 to round-off, see *Tiny tau*; with ``tol`` near its 1e-2 limit, where
 :math:`\tau_N < \tau_{sw}`, the N-mode series would differ from it there by up to ``tol``, which moves
 tau by at most ``tol`` max|S'| S_max / S_min^2 relative).  :math:`A_h` depends on tau alone, so the ODE is
@@ -77,7 +79,7 @@ the infinite series equals the image sum on [0, L] (Poisson summation), whose ma
 On the direct path (far wall not negligible) :math:`\tau_{sw} = \min(\bar p, L - \bar p)^2/72`, so that
 the far wall's share is below the same bound.
 Between :math:`\tau_{sw}` and :math:`\tau_N` (where the chosen N modes are converged to ``tol``)
-the same infinite series is summed in that dual form (:func:`image_area`, images ``|k| <= 1``,
+the same infinite series is summed in that dual form (:func:`~persson_fp.solvers.sines.image_area`, images ``|k| <= 1``,
 the rest below e^-200), so the mode count only has to serve the output stations: the default
 is the one that makes the truncation below ``tol`` at the first station.  (Before, N was sized
 for :math:`\bar p^2/72`, and a load of 1e-4 sqrt(V) with a fudge factor needed 1.4 million modes.)
@@ -90,7 +92,7 @@ import math
 import numpy as np
 
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int, check_k_domain
-from persson_fp.solvers.sines_series import (
+from persson_fp.solvers.sines.series import (
     _MAX_MODES,
     _modes_needed_scalar,
     _output_rule,
@@ -100,7 +102,7 @@ from persson_fp.solvers.sines_series import (
     series_area,
     series_pdf,
 )
-from persson_fp.solvers.sines_taumap import _FAR_WALL_Z, _RTOL_FLOOR, _scaled_integral, _TauMap
+from persson_fp.solvers.sines.taumap import _FAR_WALL_Z, _RTOL_FLOOR, _scaled_integral, _TauMap
 from persson_fp.theory.fudge import NoFudge
 
 __all__ = ["SineSeriesSolver", "series_area", "image_area", "series_pdf", "modes_needed"]

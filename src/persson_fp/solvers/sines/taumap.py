@@ -18,7 +18,7 @@ import weakref
 import numpy as np
 from scipy.special import erf, roots_laguerre
 
-from persson_fp.solvers.sines_series import _X_SWITCH, _Y_SW, _margin, image_area, series_area
+from persson_fp.solvers.sines.series import _X_SWITCH, _Y_SW, _margin, image_area, series_area
 from persson_fp.theory.fudge import Xu24
 
 _TABLE_W = 0.25
