@@ -21,6 +21,7 @@ from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.comparison import Comparison, compare_with_exact
 from persson_fp.results.exact import exact
 from persson_fp.results.invariants import DEFAULT_TOLERANCES, InstabilityError, SolverError, check_invariants
+from persson_fp.results.output import SolverOutput
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -181,6 +182,75 @@ class Solution:
         SolverError
             With ``check=True``, a breached invariant, named with its remedy.
         """
+        out = SolverOutput(
+            p=p,
+            P0=P0,
+            weights=weights,
+            kind=kind,
+            info=info if info else {},
+            contact_area=contact_area,
+            contact_area_flux=contact_area_flux,
+            stderr_area=stderr_area,
+            plastic_area=plastic_area,
+            load=load,
+            stderr_load=stderr_load,
+        )
+        return cls.from_output(
+            problem, out, method=method, zeta=zeta, wall_time=wall_time, check=check, tolerances=tolerances
+        )
+
+    @classmethod
+    def from_output(
+        cls,
+        problem: ContactProblem,
+        output: SolverOutput,
+        *,
+        method: str,
+        zeta: ArrayLike,
+        wall_time: float,
+        check: bool = True,
+        tolerances: dict | None = None,
+    ) -> Solution:
+        """A Solution from what a method handed back: the integrals computed and the invariants checked.
+
+        The one constructor the solvers use (:meth:`persson_fp.solvers.Solver.run`); :meth:`build` takes the same
+        fields one by one.
+
+        Parameters
+        ----------
+        problem : ContactProblem
+            The problem solved.
+        output : SolverOutput
+            The method's grid, P0 at the stations, quadrature weights, areas and ``info`` (copied).
+        method : str
+            Name of the method (quoted in messages).
+        zeta : float or 1-D array, dimensionless
+            Output stations, shape ``(n_zeta,)``.
+        wall_time : float, seconds
+            Time spent solving.
+        check : bool
+            True: a breached invariant raises :class:`SolverError`; False: it only warns.
+        tolerances : dict, optional
+            Invariant tolerances, keys of ``DEFAULT_TOLERANCES``
+            (:func:`~persson_fp.results.solution.check_invariants`).
+
+        Returns
+        -------
+        Solution
+            With ``info["checks"]`` holding the result of :func:`~persson_fp.results.solution.check_invariants`.
+
+        Raises
+        ------
+        InstabilityError
+            P0 holds NaN or inf values (the scheme went unstable).
+        SolverError
+            With ``check=True``, a breached invariant, named with its remedy.
+        """
+        o = output
+        p, weights, kind, info = o.p, o.weights, o.kind, o.info
+        contact_area, contact_area_flux, plastic_area = o.contact_area, o.contact_area_flux, o.plastic_area
+        stderr_area, load, stderr_load = o.stderr_area, o.load, o.stderr_load
+        P0 = o.P0
         zeta = np.asarray(zeta, dtype=float)
         zeta = zeta.reshape(1) if zeta.ndim == 0 else zeta
         n_z, n_l = zeta.size, problem.n_loads

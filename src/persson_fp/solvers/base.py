@@ -18,13 +18,13 @@ import functools
 import math
 import time
 import warnings
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from persson_fp._validate import as_float_array
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.exact import exact
+from persson_fp.results.output import SolverOutput
 from persson_fp.results.solution import DEFAULT_TOLERANCES, InstabilityError, Solution
 from persson_fp.solvers.options import K_DOMAIN_MIN, check_bool, check_float, check_int, check_k_domain
 
@@ -107,28 +107,6 @@ _IGNORED_RANGES = {
     "n_steps": lambda v, k: check_int(v, k, 1),
 }
 """The ranges of the shared knobs, checked even where a method ignores the knob (``atol=-1`` is wrong anywhere)."""
-
-
-@dataclass
-class SolverOutput:
-    """What a method's ``_solve`` hands back to :meth:`Solver.run`.
-
-    P0 has shape ``(n_zeta_out, n_loads, n_p)``.  ``kind`` is "cell" for cell
-    averages (give ``edges``) or "point" for point values.
-    """
-
-    p: np.ndarray
-    P0: np.ndarray
-    weights: np.ndarray
-    kind: str
-    info: dict = field(default_factory=dict)
-    contact_area: np.ndarray | None = None
-    contact_area_flux: np.ndarray | None = None
-    stderr_area: np.ndarray | None = None
-    plastic_area: np.ndarray | None = None
-    """A_pl at the stations, (n_zeta_out, n_loads), for a problem with a hardness wall."""
-    load: np.ndarray | None = None
-    stderr_load: np.ndarray | None = None
 
 
 class Solver:
@@ -435,26 +413,16 @@ class Solver:
         t0 = time.perf_counter()
         out = self._solve()
         wall = time.perf_counter() - t0
-        info = {"method": self.name, "options": dict(self.opts), **out.info}
-        wall = info.pop("solve_time", wall)
-        return Solution.build(
-            self.name,
+        out.info = {"method": self.name, "options": dict(self.opts), **out.info}
+        wall = out.info.pop("solve_time", wall)
+        return Solution.from_output(
             self.problem,
-            self.zeta_out,
-            out.p,
-            out.P0,
-            out.weights,
-            out.kind,
-            wall,
-            info=info,
-            contact_area=out.contact_area,
-            contact_area_flux=out.contact_area_flux,
-            stderr_area=out.stderr_area,
-            plastic_area=out.plastic_area,
+            out,
+            method=self.name,
+            zeta=self.zeta_out,
+            wall_time=wall,
             check=self.check,
             tolerances=self.invariant_tolerances(),
-            load=out.load,
-            stderr_load=out.stderr_load,
         )
 
 
