@@ -279,8 +279,14 @@ class PSD:
         numpy.ndarray, dimensionless
             zeta with V(zeta) = ``V``: 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
         """
-        E_star = np.float64(as_positive_scalar(E_star, "E_star"))
-        V = np.asarray(as_float_array(V, "V"), dtype=float)
+        return self.zeta_of_V_unchecked(
+            np.asarray(as_float_array(V, "V"), dtype=float), as_positive_scalar(E_star, "E_star")
+        )
+
+    def zeta_of_V_unchecked(self, V, E_star: float) -> np.ndarray:
+        """:meth:`zeta_of_V` at variances ``V`` already checked (a finite float array, pressure^2) and a checked
+        modulus ``E_star`` (a float > 0): the kernel for a solver's inner loop, nothing validated."""
+        E_star = np.float64(E_star)
         M_max = float(self.moment_unchecked(3, self.zeta_max))
         with np.errstate(over="ignore"):
             M = np.clip(V / (0.5 * np.pi * E_star**2), 0.0, M_max)

@@ -85,7 +85,7 @@ class MovingWall:
     # -- the wall along V --------------------------------------------------------------------------------
     def zeta(self, V):
         pr = self.problem
-        return np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))
+        return np.atleast_1d(pr.psd.zeta_of_V_unchecked(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))
 
     def wall_many(self, V):
         """(s, s_V) arrays at complete-contact variances V: sigma_Y and d sigma_Y / dV (pressure, 1/pressure)."""
@@ -93,7 +93,8 @@ class MovingWall:
         if pr.hardness is None:
             V = np.atleast_1d(np.asarray(V, dtype=float))
             return np.full(V.shape, self.p_end), np.zeros(V.shape)
-        z = np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))  # in [1, zeta_max]
+        V = np.atleast_1d(np.asarray(V, dtype=float))
+        z = np.atleast_1d(pr.psd.zeta_of_V_unchecked(V, pr.E_star))  # (clipped to [1, zeta_max] by the inverse)
         s = pr.hardness.sigma(z)
         dV = pr.psd.dV_dzeta_unchecked(z, pr.E_star)
         sV = np.where(dV > 0, pr.hardness.dsigma_dzeta(z) / np.where(dV > 0, dV, 1.0), 0.0)
