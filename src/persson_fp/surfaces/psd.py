@@ -186,16 +186,11 @@ class PSD:
     def _zeta(self, zeta):  # (check_zeta's check, one call less: it runs on every checked evaluation)
         return self.zeta_max if zeta is None else check_in_range(zeta, "zeta", 1.0, self.zeta_max)
 
-    def V_unchecked(self, z, E_star: float) -> np.ndarray:
-        """:meth:`V` at magnifications ``z`` already checked (a float array in [1, zeta_max]) and a checked modulus
-        ``E_star`` (a float > 0): the kernel for a solver's inner loop, nothing validated (pressure^2)."""
-        with np.errstate(over="ignore"):
-            return 0.25 * np.float64(E_star) ** 2 * (2.0 * np.pi * self.moment_unchecked(3, z))
-
     def dV_dzeta_unchecked(self, z, E_star: float) -> np.ndarray:
         """:meth:`dV_dzeta` at magnifications ``z`` already checked (a float array in [1, zeta_max]) and a checked
-        modulus ``E_star``: the kernel for a solver's inner loop, nothing validated (pressure^2)."""
-        q = np.asarray(z, dtype=float) * self.q_l
+        modulus ``E_star``: the kernel for a solver's inner loop, nothing validated (pressure^2).  Round-off beyond
+        the ends is clipped, as :meth:`dV_dzeta` clips it (C vanishes outside [q_l, q_s])."""
+        q = np.clip(z, 1.0, self.zeta_max) * self.q_l
         return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(q)
 
     def h2(self, zeta: ArrayLike | None = None) -> np.ndarray:
