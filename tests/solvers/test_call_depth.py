@@ -20,7 +20,7 @@ MAX_DEPTH = 12
 MAX_KERNEL_DEPTH = 10
 """The depth at which a numerical kernel (a step, a right-hand side, a propagator) is entered, at most."""
 KERNELS = {
-    ("fv/spectral.py", "_march_dst"),
+    ("fv/spectral.py", "march"),
     ("fv/spectral.py", "_dst_closed"),
     ("fv/solver.py", "theta_step"),
     ("fv/dst.py", "_amplification"),

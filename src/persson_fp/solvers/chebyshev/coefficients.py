@@ -28,8 +28,8 @@ class Coefficients:
 
     Parameters
     ----------
-    solver : ChebyshevSolver
-        Gives the problem, its magnification of V (``zeta_from_V``) and the output stations.
+    problem : ContactProblem or FokkerPlanckProblem
+        Its spectrum (V and its inverse), coefficients B1, B2 and hardness.
 
     Attributes
     ----------
@@ -41,9 +41,8 @@ class Coefficients:
         True where c is not identically 0 on the probe grid.
     """
 
-    def __init__(self, solver):
-        self._solver = solver
-        pr = self.problem = solver.problem
+    def __init__(self, problem):
+        pr = self.problem = problem
         z_ref = float(pr.zeta_max)
         if not float(pr.dV_dzeta(z_ref)) > 0:
             raise ValueError("method 'chebyshev' needs dV/dzeta > 0 at zeta_max")
@@ -181,7 +180,8 @@ class Coefficients:
 
     def zeta_of(self, V: float) -> float:
         """The magnification where the variance is V."""
-        return float(self._solver.zeta_from_V(V)[0])
+        pr = self.problem
+        return float(np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))[0])
 
     def at(self, p, V=None):
         """(b, c or None) per unit V at pressures ``p`` (any shape) and variance ``V`` (ignored if separable).

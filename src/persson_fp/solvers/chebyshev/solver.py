@@ -117,7 +117,7 @@ class ChebyshevSolver(Solver):
                 "use method='sines', 'fv' or 'mol'"
             )
         self._sigma = float(pr.sigma_Y(1.0)) if pr.hardness is not None else None
-        self._cf = cf = Coefficients(self)
+        self._cf = cf = Coefficients(self.problem)
         if o["march"] not in (None, "magnus"):
             raise ValueError(f"march must be None (choose) or 'magnus' (force the adaptive march), got {o['march']!r}")
         self.path = "magnus" if o["march"] else ("exponential" if cf.separable else "clock" if cf.clock else "magnus")

@@ -100,8 +100,8 @@ from persson_fp.solvers.fv.operators import (  # noqa: F401  (re-exported: the o
     rhs,
     wall_flux,
 )
-from persson_fp.solvers.fv.spectral import SpectralPath
-from persson_fp.solvers.fv.stepping import STEPPINGS, SteppingNodes
+from persson_fp.solvers.fv.spectral import DSTMarch
+from persson_fp.solvers.fv.stepping import STEPPINGS, step_kind, step_nodes, zeta_of_V
 from persson_fp.solvers.schemes import SCHEMES
 from persson_fp.solvers.schemes import TRBDF2_A as _BDF2_A
 from persson_fp.solvers.schemes import TRBDF2_B as _BDF2_B
@@ -113,7 +113,7 @@ from persson_fp.theory.image import tail_mass
 __all__ = ["FiniteVolumeSolver", "SCHEMES", "rhs", "banded_operator", "apply_operator", "dst_eigenvalues"]
 
 
-class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
+class FiniteVolumeSolver(Solver):
     r"""Cell-centred finite volumes with θ-schemes / TR-BDF2 (see the module docstring).
 
     Options
@@ -241,7 +241,7 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
 
         linalg = "banded" if o["linalg"] == "banded" else "dst"  # dst is exact for every option here
         self.zeta0, V0, P, A0 = self._start()
-        V_nodes, station_idx = self._nodes(V0)
+        V_nodes, station_idx = step_nodes(pr, o, self.zeta0, V0, self.zeta_out, self.V_out)
         n_steps = V_nodes.shape[0] - 1
 
         space = o["space"]
@@ -262,7 +262,8 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
 
         P_far0 = P[:, -1].copy()
         if linalg == "dst":
-            res = self._march_dst(P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge)
+            march = DSTMarch(pr, o, self.zeta_out, self.dp, self._A_pl0)
+            res = march.march(P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge)
         else:
             res = self._march_banded(P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge)
         P_out, A_out, Af_out = res["P_out"], res["A_out"], res["Af_out"]
@@ -307,7 +308,7 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
 
     # -- the reference march: tridiagonal solves in p -------------------------------------------
     def _march_banded(self, P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge) -> dict:
-        """The time loop with LAPACK tridiagonal solves (the readable reference of :meth:`_march_dst`)."""
+        """The time loop with LAPACK tridiagonal solves (the readable reference of the DST march, ``DSTMarch``)."""
         o, pr = self.opts, self.problem
         no_fudge = isinstance(pr.fudge, NoFudge)
         S = pr.fudge.S
@@ -354,7 +355,7 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
 
         def step(P, dtau, n):
             """One step of the chosen scheme: (P_new, dJ0, dJN)."""
-            kind = self._step_kind(n)
+            kind = step_kind(o, n)
             if kind == "tr-bdf2":
                 Ps, j0s, jNs = theta_step(P, _GAMMA * dtau, 0.5)
                 apply_mass(_BDF2_A * Ps - _BDF2_B * P, space, out=MP)
@@ -413,11 +414,11 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
                 try:
                     self.check_state(P, cons, mass_prev, np.nan, "fv/" + o["scheme"], remedy)
                 except InstabilityError:  # say where (the root find costs only when it fails)
-                    z_now = self._zeta_of_V(float(V_nodes[n + 1, 0]))
+                    z_now = zeta_of_V(pr, float(V_nodes[n + 1, 0]))
                     self.check_state(P, cons, mass_prev, z_now, "fv/" + o["scheme"], remedy)
                 sup = np.max(np.abs(P), axis=-1)
                 if np.any(sup > 2.0 * sup0 + 1e-300):
-                    z_now = self._zeta_of_V(float(V_nodes[n + 1, 0]))
+                    z_now = zeta_of_V(pr, float(V_nodes[n + 1, 0]))
                     raise InstabilityError(
                         f"fv/{o['scheme']}: max |P0| grew by a factor {np.max(sup / sup0):.3g} by zeta = "
                         f"{z_now:.6g} (the heat equation cannot do that; r = {r_max:.3g}); {remedy}"
@@ -476,18 +477,3 @@ class FiniteVolumeSolver(SteppingNodes, SpectralPath, Solver):
             "coupling": "exact (S = 1)" if isinstance(pr.fudge, NoFudge) else coupling,
         }
         return SolverOutput(**finish(pr, n, fine, coarse, what, o["tol"], info, self.name))
-
-    # -- start-up steps shared by the banded and the spectral march -------------------------------------
-    def _damped_steps(self) -> int:
-        """Leading steps done as two backward-Euler half steps: Rannacher's start-up, and TR-BDF2's
-        from a delta (its amplification factor is negative for dtau |lambda| > ~2.4: one-step
-        2nd-order schemes cannot be positive for every step size, so rough data would ring)."""
-        o = self.opts
-        if o["scheme"] == "rannacher" or (o["scheme"] == "tr-bdf2" and o["initial"] == "delta"):
-            return o["rannacher_steps"]
-        return 0
-
-    def _step_kind(self, n: int) -> str:
-        if n < self._damped_steps():
-            return "be-halves"
-        return "tr-bdf2" if self.opts["scheme"] == "tr-bdf2" else "theta"

@@ -50,11 +50,13 @@ from __future__ import annotations
 import numpy as np
 
 from persson_fp.results.solution import DEFAULT_TOLERANCES, InstabilityError
+from persson_fp.solvers.base import Solver
 from persson_fp.solvers.fv.dst import _amplification, _growth, _Spectral, dst_eigenvalues
 from persson_fp.solvers.fv.operators import march_result
+from persson_fp.solvers.fv.stepping import damped_steps, step_kind, zeta_of_V
 from persson_fp.theory.fudge import NoFudge
 
-__all__ = ["dst_eigenvalues", "SpectralPath"]
+__all__ = ["dst_eigenvalues", "DSTMarch"]
 
 _FLUSH = 1e-200
 """DST path: coefficients (relative to ||P0||_2) below this are set to 0.  The top modes decay by
@@ -74,29 +76,46 @@ _TRAJECTORY_TOL = 1e-14
 """Converged when every step's residual is below this fraction of the load's largest step."""
 
 
-class SpectralPath:
-    """The DST-II march of :class:`~persson_fp.solvers.fv.FiniteVolumeSolver` (a mixin: it uses the solver's
-    options, problem, grid and ``_step_kind`` / ``_damped_steps``)."""
+class DSTMarch:
+    """The DST-II march of ``"fv"`` (module docstring): built from the problem, the method's options, the output
+    stations, the cell width and the start's plastic area; :meth:`march` runs it.
+
+    Parameters
+    ----------
+    problem : ContactProblem
+    opts : dict
+        ``"fv"``'s options (scheme, initial, rannacher_steps, check_every ...).
+    zeta_out : ndarray
+        Output stations (dimensionless).
+    dp : float
+        Cell width (pressure).
+    A_pl0 : ndarray
+        Plastic area at the start per load (zeros without a hardness).
+    """
+
+    def __init__(self, problem, opts, zeta_out, dp: float, A_pl0):
+        self.problem, self.opts, self.zeta_out, self.dp = problem, opts, zeta_out, dp
+        self._hard, self._A_pl0 = problem.hardness is not None, A_pl0
 
     def _check_dst(self, C, mass, mass_prev, norm, norm0, V_now, r_max):
         """The stability checks of the banded path, on coefficients (the l2 norm of P0 is ||c||_2)."""
         name = "fv/" + self.opts["scheme"]
         remedy = "raise n_steps or use scheme='tr-bdf2'"
         try:
-            self.check_state(C, mass, mass_prev, np.nan, name, remedy)
+            Solver.check_state(C, mass, mass_prev, np.nan, name, remedy)
         except InstabilityError:  # say where (the root find costs only when it fails)
-            self.check_state(C, mass, mass_prev, self._zeta_of_V(V_now), name, remedy)
+            Solver.check_state(C, mass, mass_prev, zeta_of_V(self.problem, V_now), name, remedy)
         if np.any(norm > 2.0 * norm0 + 1e-300):
             raise InstabilityError(
                 f"{name}: the l2 norm of P0 grew by a factor {np.max(norm / norm0):.3g} by zeta = "
-                f"{self._zeta_of_V(V_now):.6g} (the heat equation cannot do that; r = {r_max:.3g}); {remedy}"
+                f"{zeta_of_V(self.problem, V_now):.6g} (the heat equation cannot do that; r = {r_max:.3g}); {remedy}"
             )
 
     def _amplify_all(self, X, theta):
         """R and F of every step at once: X (n_steps, ..., n_p); the damped first steps are BE halves."""
         n_steps = X.shape[0]
-        R, F = _amplification(self._step_kind(n_steps), theta, X)
-        r0 = min(self._damped_steps(), n_steps)
+        R, F = _amplification(step_kind(self.opts, n_steps), theta, X)
+        r0 = min(damped_steps(self.opts), n_steps)
         if r0 > 0:
             R[:r0], F[:r0] = _amplification("be-halves", theta, X[:r0])
         return R, F
@@ -135,8 +154,8 @@ class SpectralPath:
         lam = sp.lam[keep]
         mass0, b0 = W[0].sum(axis=-1), W[1].sum(axis=-1)  # at the start (node 0)
         WT = np.ascontiguousarray(W[:, 0, :].T) if m == 1 else None  # one load: a matmul, not an einsum
-        r0 = min(self._damped_steps(), dts.shape[0])
-        kind = self._step_kind(dts.shape[0])
+        r0 = min(damped_steps(self.opts), dts.shape[0])
+        kind = step_kind(self.opts, dts.shape[0])
         chord = None  # the correction's recurrence, set up once (a chord method: the Jacobian is approximate anyway)
         with np.errstate(over="ignore", invalid="ignore", under="ignore"):
             for sweep in range(1, _TRAJECTORY_SWEEPS + 1):
@@ -179,7 +198,7 @@ class SpectralPath:
         return None, _TRAJECTORY_SWEEPS
 
     def _dst_closed(self, sp, C0, P_edge0, A0, dts, V_nodes, station_idx, theta, r_limit, w_edge, sweeps=0):
-        """The whole march from given steps dts (n_steps, 1 or n_loads), all steps at once (see _march_dst)."""
+        """The whole march from given steps dts (n_steps, 1 or n_loads), all steps at once (see march)."""
         o = self.opts
         fun = sp.functionals
         m, N = C0.shape
@@ -250,8 +269,8 @@ class SpectralPath:
             },
         )
 
-    def _march_dst(self, P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge) -> dict:
-        r"""The time loop of :meth:`_march_banded` in DST-II coefficient space (module docstring).
+    def march(self, P, A0, V_nodes, station_idx, scheme, coupling, space, r_limit, w_edge) -> dict:
+        r"""The time loop of the banded march in DST-II coefficient space (module docstring).
 
         Every step multiplies coefficient j by :math:`R(\Delta\tau\lambda_j)` (``_amplification``);
         A* and the wall fluxes are linear functionals of the coefficients, so the coupling of the
@@ -313,7 +332,7 @@ class SpectralPath:
         work = (np.empty((m, N)), np.empty((m, N)), np.empty((m, N)))
         bufs = [np.empty((m, N)), np.empty((m, N))]  # the state and the next state, swapped every step
 
-        kinds = [self._step_kind(n) for n in range(n_steps)]
+        kinds = [step_kind(self.opts, n) for n in range(n_steps)]
         dV_all = np.diff(V_nodes, axis=0)
         stations = [int(i) for i in station_idx]
 
