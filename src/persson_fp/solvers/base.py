@@ -31,6 +31,7 @@ from persson_fp.solvers.options import K_DOMAIN_MIN, check_bool, check_float, ch
 __all__ = [
     "Solver",
     "SolverOutput",
+    "StationRecorder",
     "SHARED_KNOBS",
     "check_int",
     "check_float",
@@ -107,6 +108,45 @@ _IGNORED_RANGES = {
     "n_steps": lambda v, k: check_int(v, k, 1),
 }
 """The ranges of the shared knobs, checked even where a method ignores the knob (``atol=-1`` is wrong anywhere)."""
+
+
+class StationRecorder:
+    """What a march holds as it passes the output stations: one recorder for every stepping method.
+
+    ``steps[i]`` is the step after which station i is reached (non-decreasing; stations may share a step);
+    ``shapes`` names each recorded quantity and its shape at one station (e.g. ``P0=(n_loads, n_p)``).
+    :meth:`record` after step n stores the given values at every station reached then; ``recorder[name]`` is the
+    array (n_stations, *shape).
+
+    Examples
+    --------
+    >>> rec = StationRecorder([2, 5, 5], area=(1,))
+    >>> for n in range(1, 6):
+    ...     rec.record(n, area=[float(n)])
+    >>> rec["area"][:, 0].tolist()
+    [2.0, 5.0, 5.0]
+    """
+
+    def __init__(self, steps, **shapes):
+        self.steps = np.asarray(steps, dtype=int)
+        self._at: dict[int, list[int]] = {}
+        for i, n in enumerate(self.steps.tolist()):
+            self._at.setdefault(n, []).append(i)
+        self.values = {name: np.empty((self.steps.size, *shape)) for name, shape in shapes.items()}
+
+    def __contains__(self, n: int) -> bool:
+        """Whether a station is reached after step ``n``."""
+        return n in self._at
+
+    def record(self, n: int, load=slice(None), **values) -> None:
+        """After step ``n``: store each value at every station reached then (nothing where none is).  ``load``
+        indexes the first axis of the shape (a method that marches one load at a time passes its index)."""
+        for i in self._at.get(n, ()):
+            for name, v in values.items():
+                self.values[name][i, load] = v
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.values[name]
 
 
 class Solver:

@@ -54,7 +54,7 @@ import numpy as np
 
 from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers.backends._stepping import r_per_step, step_nodes
-from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
+from persson_fp.solvers.base import Solver, SolverOutput, StationRecorder, check_float, check_int
 from persson_fp.theory.fudge import NoFudge
 
 __all__ = ["FiPySolver", "SCHEMES", "LINEAR_SOLVERS"]
@@ -189,13 +189,12 @@ class FiPySolver(Solver):
         setup_time = time.perf_counter() - t_c
 
         m = pr.n_loads
-        P_out = np.empty((self.zeta_out.size, m, N))
+        rec = StationRecorder(st_idx[1:], P0=(m, N))
         remedy = "raise n_steps (or n_steps=None)" if explicit else "raise n_steps"
         name = f"fipy/{o['scheme']}"
         sweeps_total = 0
         sweeps_capped = 0
         solves = 0
-        st_set = {int(i): k for k, i in enumerate(st_idx[1:])}
         t_s = time.perf_counter()
         for j in range(m):
             phi.setValue(P_init[j])
@@ -231,7 +230,7 @@ class FiPySolver(Solver):
                         sweeps_capped += 1
                     sweeps_total += sweep + 1
                 P = phi.value
-                if (n + 1) % 20 == 0 or (n + 1) in st_set or n + 1 == dV.size:
+                if (n + 1) % 20 == 0 or (n + 1) in rec or n + 1 == dV.size:
                     z_now = float(self.zeta_from_V(V_nodes[n + 1])[0])
                     self.check_state(P, np.array([A_new]), np.array([A_n]), z_now, name, remedy)
                     if np.sum(np.abs(P)) * dp > l1_0 * (1.0 + 1e-3) + 1e-12:
@@ -244,8 +243,7 @@ class FiPySolver(Solver):
                     self.check_state(P, np.array([A_new]), np.array([A_n]), z_now, name, remedy)
                 A_prev, A_n = A_n, A_new
                 phi.updateOld()
-                if (n + 1) in st_set:
-                    P_out[st_set[n + 1], j] = P
+                rec.record(n + 1, load=j, P0=P)
         solve_time = time.perf_counter() - t_s
 
         ex_end = self.exact_at(self.zeta_out[-1])
@@ -273,7 +271,7 @@ class FiPySolver(Solver):
         }
         return SolverOutput(
             p=np.asarray(mesh.cellCenters[0].value, float).copy(),
-            P0=P_out,
+            P0=rec["P0"],
             weights=np.full(N, dp),
             kind="cell",
             info=info,

@@ -83,7 +83,7 @@ from __future__ import annotations
 import numpy as np
 
 from persson_fp.results.solution import InstabilityError
-from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
+from persson_fp.solvers.base import Solver, SolverOutput, StationRecorder, check_float, check_int
 from persson_fp.solvers.front_fixed.estimate import finish, run_pair
 from persson_fp.solvers.front_fixed.start import general_start, singular_step_error
 from persson_fp.solvers.fv.dst import _amplification, _growth, dst_eigenvalues  # noqa: F401
@@ -324,10 +324,7 @@ class FiniteVolumeSolver(Solver):
         mass = P.sum(axis=-1) * dp
         J0 = np.zeros(m)  # absorbed through p = 0 since zeta0
         JN = np.zeros(m)  # lost through p = p_max
-        P_out = np.empty((self.zeta_out.size, m, N))
-        A_out = np.empty((self.zeta_out.size, m))
-        Af_out = np.empty((self.zeta_out.size, m))
-        JN_out = np.empty((self.zeta_out.size, m))
+        rec = StationRecorder(station_idx, P_out=(m, N), A_out=(m,), Af_out=(m,), JN_out=(m,))
         hard, A_pl0 = self._hard, self._A_pl0
         sup0 = np.max(np.abs(P), axis=-1)
         # the checks watch the conserved sum(M P) dp (= A* - w_edge dp (P_0 + P_-1)): with the compact mass
@@ -368,7 +365,6 @@ class FiniteVolumeSolver(Solver):
                 return Pn, a0 + b0_, aN + bN_
             return theta_step(P, dtau, scheme.theta)
 
-        st = 0
         dtau_prev = None
         for n in range(n_steps):
             dV = V_nodes[n + 1] - V_nodes[n]
@@ -424,17 +420,14 @@ class FiniteVolumeSolver(Solver):
                         f"{z_now:.6g} (the heat equation cannot do that; r = {r_max:.3g}); {remedy}"
                     )
                 mass_prev = cons
-            while st < station_idx.size and n + 1 == station_idx[st]:
-                P_out[st] = P
-                A_out[st] = mass
-                Af_out[st] = A0 - J0 + w_edge * dp * (P[:, 0] - P_edge0)
-                JN_out[st] = JN
-                st += 1
+            if n + 1 in rec:
+                Af = A0 - J0 + w_edge * dp * (P[:, 0] - P_edge0)
+                rec.record(n + 1, P_out=P, A_out=mass, Af_out=Af, JN_out=JN)
         return march_result(
-            P_out,
-            A_out,
-            Af_out,
-            JN_out,
+            rec["P_out"],
+            rec["A_out"],
+            rec["Af_out"],
+            rec["JN_out"],
             JN,
             r_max,
             dtau_total,

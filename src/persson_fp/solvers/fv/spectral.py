@@ -50,7 +50,7 @@ from __future__ import annotations
 import numpy as np
 
 from persson_fp.results.solution import DEFAULT_TOLERANCES, InstabilityError
-from persson_fp.solvers.base import Solver
+from persson_fp.solvers.base import Solver, StationRecorder
 from persson_fp.solvers.fv.dst import _amplification, _growth, _Spectral, dst_eigenvalues
 from persson_fp.solvers.fv.operators import march_result
 from persson_fp.solvers.fv.stepping import damped_steps, step_kind, zeta_of_V
@@ -287,10 +287,7 @@ class DSTMarch:
         C0 = sp.forward(P)
         P_edge0 = P[:, 0].copy()
         norm0 = np.sqrt(np.einsum("ij,ij->i", C0, C0))
-        P_out = np.empty((self.zeta_out.size, m, N))
-        A_out = np.empty((self.zeta_out.size, m))
-        Af_out = np.empty((self.zeta_out.size, m))
-        JN_out = np.empty((self.zeta_out.size, m))
+        rec = StationRecorder(station_idx, P_out=(m, N), A_out=(m,), Af_out=(m,), JN_out=(m,))
         hard, A_pl0 = self._hard, self._A_pl0
         too_big = (
             "explicit scheme: r = dtau/(2 dp^2) = {:.4g} exceeds the stability limit {:.4g} "
@@ -334,7 +331,6 @@ class DSTMarch:
 
         kinds = [step_kind(self.opts, n) for n in range(n_steps)]
         dV_all = np.diff(V_nodes, axis=0)
-        stations = [int(i) for i in station_idx]
 
         def step(C, dtau, n):
             np.multiply(dtau[:, None], lam, out=X)
@@ -357,7 +353,6 @@ class DSTMarch:
         dtau_max = r_max = 0.0
         dtau_total = np.zeros(m)
         dtau_prev = None
-        st = 0
         for n in range(n_steps):
             dV = dV_all[n]
             if no_fudge:
@@ -400,19 +395,15 @@ class DSTMarch:
                 cons = mass - w_edge * dp**2 * (b0 + bN)
                 self._check_dst(C, cons, mass_prev, norm, norm0, V_nodes[n + 1, 0], r_max)
                 mass_prev = cons
-            if st < len(stations) and n + 1 == stations[st]:
+            if n + 1 in rec:
                 Pst = sp.inverse(C)
-                while st < len(stations) and n + 1 == stations[st]:
-                    P_out[st] = Pst
-                    A_out[st] = mass
-                    Af_out[st] = A0 - J0 + w_edge * dp * (Pst[:, 0] - P_edge0)
-                    JN_out[st] = JN
-                    st += 1
+                Af = A0 - J0 + w_edge * dp * (Pst[:, 0] - P_edge0)
+                rec.record(n + 1, P_out=Pst, A_out=mass, Af_out=Af, JN_out=JN)
         return march_result(
-            P_out,
-            A_out,
-            Af_out,
-            JN_out,
+            rec["P_out"],
+            rec["A_out"],
+            rec["Af_out"],
+            rec["JN_out"],
             JN,
             r_max,
             dtau_total,

@@ -77,7 +77,7 @@ from scipy.signal import fftconvolve
 from scipy.special import erf, erfc, erfcx
 
 from persson_fp.results.solution import SolverError
-from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
+from persson_fp.solvers.base import Solver, SolverOutput, StationRecorder, check_float, check_int
 from persson_fp.theory import fudge as _fudge
 
 __all__ = ["ChapmanKolmogorovSolver"]
@@ -314,11 +314,7 @@ class ChapmanKolmogorovSolver(Solver):
 
         # source of A*(tau) for the coupling: state at the start of the previous step (delta at first)
         src = None  # None: the delta at tau = 0
-        out_P = np.empty((len(stations), L, n))
-        out_tau = np.empty((len(stations), L))
-        out_atom = np.empty((len(stations), L))
-        out_far = np.empty((len(stations), L))
-        st = dict(zip(stations, range(len(stations))))
+        rec = StationRecorder(stations, P=(L, n), tau=(L,), atom=(L,), far=(L,))
         how = "exact image solution (single step from the delta)"
         min_ratio = np.inf
 
@@ -369,9 +365,8 @@ class ChapmanKolmogorovSolver(Solver):
                 tau_new = tau + dtau
             src = None if P is None else (P, tau)  # the start of this step serves the next one
             P, tau = P_new, tau_new
-            if k in st:
-                i = st[k]
-                out_P[i], out_tau[i], out_atom[i], out_far[i] = P, tau, atom, far
+            rec.record(k, P=P, tau=tau, atom=atom, far=far)
+        out_P, out_tau, out_atom, out_far = rec["P"], rec["tau"], rec["atom"], rec["far"]
         self.check_state(out_P, out_P.sum(-1) * h, None, float(self.zeta_out[-1]), self.name)
         info = {
             "edges": edges,
