@@ -138,12 +138,13 @@ class StationRecorder:
         """Whether a station is reached after step ``n``."""
         return n in self._at
 
-    def record(self, n: int, load=slice(None), **values) -> None:
+    def record(self, n: int, load: int | None = None, **values) -> None:
         """After step ``n``: store each value at every station reached then (nothing where none is).  ``load``
         indexes the first axis of the shape (a method that marches one load at a time passes its index)."""
         for i in self._at.get(n, ()):
+            at = i if load is None else (i, load)
             for name, v in values.items():
-                self.values[name][i, load] = v
+                self.values[name][at] = v
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.values[name]
