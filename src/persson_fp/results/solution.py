@@ -170,17 +170,8 @@ class Solution:
         stderr_load : array_like, pressure, optional
             Standard error of ``load``.
 
-        Returns
-        -------
-        Solution
-            With ``info["checks"]`` holding the result of :func:`~persson_fp.results.solution.check_invariants`.
-
-        Raises
-        ------
-        InstabilityError
-            P0 holds NaN or inf values (the scheme went unstable).
-        SolverError
-            With ``check=True``, a breached invariant, named with its remedy.
+        Returns and raises as :meth:`from_output`, which it calls with these fields gathered in one
+        :class:`~persson_fp.results.output.SolverOutput`.
         """
         out = SolverOutput(
             p=p,
@@ -213,7 +204,7 @@ class Solution:
     ) -> Solution:
         """A Solution from what a method handed back: the integrals computed and the invariants checked.
 
-        The one constructor the solvers use (:meth:`persson_fp.solvers.Solver.run`); :meth:`build` takes the same
+        The one constructor the solvers use (``Solver.run``); :meth:`build` takes the same
         fields one by one.
 
         Parameters
