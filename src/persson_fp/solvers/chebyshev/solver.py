@@ -50,7 +50,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
-from persson_fp.solvers.chebyshev import collocation as co
+from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.coefficients import Coefficients
 from persson_fp.solvers.chebyshev.magnus import magnus_march
 
@@ -156,7 +156,7 @@ class ChebyshevSolver(Solver):
             )
         hi = pbar + math.sqrt(float(b(np.array([pbar]))[0]) * V) * k
         for _ in range(80):
-            if float(co.lamperti_distance(b, np.array(pbar), np.array(hi))) >= need:
+            if float(collocation.lamperti_distance(b, np.array(pbar), np.array(hi))) >= need:
                 return hi, k
             hi = pbar + 1.5 * (hi - pbar)
         raise ValueError(
@@ -188,7 +188,7 @@ class ChebyshevSolver(Solver):
             if np.any(b_at <= 0):
                 raise ValueError("method 'chebyshev': B2 vanishes at the load p_bar (the start cannot spread)")
             wall = None if self._sigma is None else np.full(pb.shape, self._sigma)
-            P = co.start_density(lambda q, Vs=V_start: cf.at(q, Vs), grid.p, pb, t0, p_wall=wall)
+            P = collocation.start_density(lambda q, Vs=V_start: cf.at(q, Vs), grid.p, pb, t0, p_wall=wall)
             P[:, 0] = P[:, -1] = 0.0
             mass0 = np.sum(P * grid.w, axis=-1)
             load0 = np.sum(P * grid.w * grid.p, axis=-1)
@@ -196,7 +196,7 @@ class ChebyshevSolver(Solver):
             lo = np.maximum(pb - 12.0 * np.sqrt(b_at * t0), 0.0)
             hi = np.minimum(pb + 12.0 * np.sqrt(b_at * t0), p_max[k])
             q = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * _GL96[0]
-            Pq = co.start_density(lambda x, Vs=V_start: cf.at(x, Vs), q, pb, t0, p_wall=wall)
+            Pq = collocation.start_density(lambda x, Vs=V_start: cf.at(x, Vs), q, pb, t0, p_wall=wall)
             mass_ref = 0.5 * (hi - lo) * (Pq @ _GL96[1])
             unresolved[k] = np.abs(mass0 - mass_ref)
             # and is the start itself sound?  Its mass against the drift-free images' (exact for constant b, c = 0)
@@ -210,18 +210,18 @@ class ChebyshevSolver(Solver):
                 )
             if path != "magnus":
                 b_n, c_n = cf.at(grid.p)
-                L = co.generator(grid, b_n, c_n)
+                L = collocation.generator(grid, b_n, c_n)
                 span = float(V) - V0 if path == "exponential" else cf.tau(V0, float(V))
-                P[:, 1:-1], I = co.propagate_with_integral(L, P[:, 1:-1], span)
-                roundoff[k] = co.roundoff_floor(L, span, n)
-                out0, out_far = co.wall_losses(grid, b_n, c_n, I)
+                P[:, 1:-1], I = collocation.propagate_with_integral(L, P[:, 1:-1], span)
+                roundoff[k] = collocation.roundoff_floor(L, span, n)
+                out0, out_far = collocation.wall_losses(grid, b_n, c_n, I)
                 moment = 0.0 if c_n is None else np.sum((grid.w * c_n)[:, 1:-1] * I, axis=-1)
             else:
                 m = n - 1
 
                 def A_of(Vq, grid=grid):
                     b_n, c_n = cf.at(grid.p, Vq)
-                    return co.with_wall_rows(grid, co.generator(grid, b_n, c_n), b_n, c_n)
+                    return collocation.with_wall_rows(grid, collocation.generator(grid, b_n, c_n), b_n, c_n)
 
                 def norm(d, w=grid.w[:, 1:-1], m=m):
                     return np.sum(np.abs(d[:, :m]) * w, axis=-1) + np.abs(d[:, m]) + np.abs(d[:, m + 1])
@@ -239,7 +239,9 @@ class ChebyshevSolver(Solver):
                     raise SolverError(f"chebyshev: {err}; loosen tol{hint} or use method='fv'") from None
                 for key in stats:
                     stats[key] += st[key]
-                roundoff[k] = co.roundoff_floor(np.maximum(np.abs(A_of(V0)), np.abs(A_of(float(V)))), V - V0, n)
+                roundoff[k] = collocation.roundoff_floor(
+                    np.maximum(np.abs(A_of(V0)), np.abs(A_of(float(V)))), V - V0, n
+                )
                 P[:, 1:-1], out0, out_far, moment = y[:, :m], y[:, m], y[:, m + 1], y[:, m + 2]
             far[k] = np.maximum(out_far, 0.0)
             # the first-moment law: the load the solution must carry (with a hardness: elastic + sigma_Y A_pl)
@@ -263,7 +265,10 @@ class ChebyshevSolver(Solver):
         """(L1 of the difference, |dA_el|, |dF| / p_bar, |dA_pl|, |dA_non|) per station and load."""
         (g, P, far), (g2, P2, far2) = main, other
         L1 = np.stack(
-            [np.sum(np.abs(P[k] - co.interpolate(g2[k], P2[k], g[k].p)) * g[k].w, axis=-1) for k in range(len(g))]
+            [
+                np.sum(np.abs(P[k] - collocation.interpolate(g2[k], P2[k], g[k].p)) * g[k].w, axis=-1)
+                for k in range(len(g))
+            ]
         )
         A, F, Apl = self._stats_of(g, P, far)
         A2, F2, Apl2 = self._stats_of(g2, P2, far2)
@@ -294,12 +299,12 @@ class ChebyshevSolver(Solver):
         if self.path == "clock":
             V_start, t0 = None, cf.tau(0.0, V0)
         b_at = cf.at(pb, V_start)[0]
-        grid = co.chebyshev_grid(n, p_max, pb, 3.0 * np.sqrt(b_at * t0)) if np.all(b_at > 0) else None
+        grid = collocation.chebyshev_grid(n, p_max, pb, 3.0 * np.sqrt(b_at * t0)) if np.all(b_at > 0) else None
         return V0, V_start, t0, b_at, grid
 
     def _floor_at(self, n, frac, p_max):
-        """The largest round-off floor (:func:`co.roundoff_floor`, not below 4 eps n^2) a run at degree n and start
-        fraction ``frac`` would report, over stations and loads -- from the operators alone, before any run
+        """The largest round-off floor (:func:`collocation.roundoff_floor`, not below 4 eps n^2) a run at degree n and
+        start fraction ``frac`` would report, over stations and loads -- from the operators alone, before any run
         (milliseconds: the grids and generators of :meth:`_run` without their exponentials or march)."""
         cf, worst = self._cf, 4.0 * np.finfo(float).eps * n * n
         for k, V in enumerate(self.V_out):
@@ -308,11 +313,11 @@ class ChebyshevSolver(Solver):
                 return worst  # (the run names it)
             if self.path != "magnus":
                 span = float(V) - V0 if self.path == "exponential" else cf.tau(V0, float(V))
-                L = co.generator(grid, *cf.at(grid.p))
+                L = collocation.generator(grid, *cf.at(grid.p))
             else:
                 span = float(V) - V0
-                L = np.maximum(*(np.abs(co.generator(grid, *cf.at(grid.p, Vq))) for Vq in (V0, float(V))))
-            worst = max(worst, float(np.max(co.roundoff_floor(L, span, n))))
+                L = np.maximum(*(np.abs(collocation.generator(grid, *cf.at(grid.p, Vq))) for Vq in (V0, float(V))))
+            worst = max(worst, float(np.max(collocation.roundoff_floor(L, span, n))))
         return worst
 
     def _start_of(self, tol):
@@ -392,8 +397,8 @@ class ChebyshevSolver(Solver):
             L1_s, dA_s, dF_s, dP_s, dN_s = self._compare(main, start_part)
             A, F, A_pl = self._stats_of(*main)
             far_err = np.zeros_like(far) if hard else 2.0 * far
-            # round-off of the dense exponential: its backward error eps ||L dV|| (co.roundoff_floor), not below
-            # 4 eps n^2 (the quadrature of P at a small degree)
+            # round-off of the dense exponential: its backward error eps ||L dV|| (collocation.roundoff_floor), not
+            # below 4 eps n^2 (the quadrature of P at a small degree)
             floor = np.maximum(4.0 * np.finfo(float).eps * n * n, self._roundoff)
             common = far_err + floor + t_err + self._unresolved  # (the start's quadrature error: an L1 contraction
             # carries it to every station; partners that all miss a spike agree with each other)
@@ -472,7 +477,7 @@ class ChebyshevSolver(Solver):
         Pout, p, w, extra = self._output(grids, P, p_max, n)
         info["grid"].update(extra)
         # the polynomial's ripple where P is ~0 (tails, next to the walls) is within the estimate: set to 0
-        Pout, info["ripple_zeroed"] = co.zero_ripple(Pout)
+        Pout, info["ripple_zeroed"] = collocation.zero_ripple(Pout)
         return SolverOutput(
             p=p,
             P0=Pout,
@@ -491,12 +496,12 @@ class ChebyshevSolver(Solver):
             # (at the nodes: spectrally accurate values, 0 beyond their far wall; A* and the load come from each
             # station's own grid)
             g0 = grids[-1]
-            Pout = np.stack([P[k] if g is g0 else co.interpolate(g, P[k], g0.p) for k, g in enumerate(grids)])
+            Pout = np.stack([P[k] if g is g0 else collocation.interpolate(g, P[k], g0.p) for k, g in enumerate(grids)])
             return Pout, g0.p[0], g0.w[0], {"centre": g0._map[2], "eps": g0._map[3]}
         # a common output grid: plain Chebyshev of twice the degree (areas and loads from the own grids)
         pm = float(p_max[-1])
-        common = co.chebyshev_grid(2 * n, pm, np.array([0.5 * pm]), np.array([1e6 * pm]))
+        common = collocation.chebyshev_grid(2 * n, pm, np.array([0.5 * pm]), np.array([1e6 * pm]))
         p, w = common.p[0], common.w[0]
         q = np.broadcast_to(p, (pr.n_loads, p.size))
-        Pout = np.stack([co.interpolate(grids[kk], P[kk], q) for kk in range(P.shape[0])])
+        Pout = np.stack([collocation.interpolate(grids[kk], P[kk], q) for kk in range(P.shape[0])])
         return Pout, p, w, {}

@@ -50,7 +50,7 @@ import numpy as np
 
 from persson_fp.results.invariants import SolverError
 from persson_fp.solvers.base import SolverOutput
-from persson_fp.solvers.chebyshev import collocation as co
+from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.magnus import magnus_march
 from persson_fp.theory.strip import strip_quantities
 
@@ -170,9 +170,9 @@ def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
         V0 = frac * V
         s0 = wall(V0)[0]
         width = math.sqrt(V0)
-        grid = co.chebyshev_grid(n, 1.0, pb / s0, np.full(nl, 3.0 * width / s0))
+        grid = collocation.chebyshev_grid(n, 1.0, pb / s0, np.full(nl, 3.0 * width / s0))
         wall_p = np.full(nl, s0)
-        w0 = s0 * co.start_density(lambda q: (np.ones(np.shape(q)), None), s0 * grid.p, pb, V0, p_wall=wall_p)
+        w0 = s0 * collocation.start_density(lambda q: (np.ones(np.shape(q)), None), s0 * grid.p, pb, V0, p_wall=wall_p)
         w0[:, 0] = w0[:, -1] = 0.0
         q = strip_quantities(pb, s0, V0)
         # the start's quadrature on the grid against the strip's exact elastic area
@@ -223,7 +223,7 @@ def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
         out["A_non"][k] = q["noncontact_area"] + y[:, m + 1]
         out["t_err"][k] = t_err
         # the dense exponentials' backward error, as on the general Magnus path (collocation.roundoff_floor)
-        out["roundoff"][k] = co.roundoff_floor(np.maximum(np.abs(A_of(V0)), np.abs(A_of(V))), V - V0, n)
+        out["roundoff"][k] = collocation.roundoff_floor(np.maximum(np.abs(A_of(V0)), np.abs(A_of(V))), V - V0, n)
         out["grids"].append(grid)
         out["nodes"].append(used if nodes is None else nodes[k])
     out["stats"] = stats
@@ -234,7 +234,7 @@ def _compare(main, other, p_bar):
     """(L1 of w, i.e. of P in p; |dA_el|; |dA_pl|; |dA_non|; |dF| / p_bar) per station and load."""
     L1 = np.stack(
         [
-            np.sum(np.abs(main["W"][k] - co.interpolate(g2, other["W"][k], g.p)) * g.w, axis=-1)
+            np.sum(np.abs(main["W"][k] - collocation.interpolate(g2, other["W"][k], g.p)) * g.w, axis=-1)
             for k, (g, g2) in enumerate(zip(main["grids"], other["grids"]))
         ]
     )
@@ -353,7 +353,7 @@ def solve_moving_wall(solver) -> SolverOutput:
         "wall_value": main["beta"] * main["A_pl"],
     }
     p, P0, weights = _output(pr, main, n)
-    P0, info["ripple_zeroed"] = co.zero_ripple(P0)
+    P0, info["ripple_zeroed"] = collocation.zero_ripple(P0)
     return SolverOutput(
         p=p,
         P0=P0,
@@ -374,9 +374,9 @@ def _output(pr, main, n):
         wx = np.stack([g.w[0] for g in main["grids"]])
         W = main["W"]
     else:  # a common plain Chebyshev grid of twice the degree in x
-        common = co.chebyshev_grid(2 * n, 1.0, np.array([0.5]), np.array([1e6]))
+        common = collocation.chebyshev_grid(2 * n, 1.0, np.array([0.5]), np.array([1e6]))
         x = np.broadcast_to(common.p[0], (s.size, common.p.shape[1]))
         wx = np.broadcast_to(common.w[0], x.shape)
         q = np.broadcast_to(common.p[0], (pr.n_loads, common.p.shape[1]))
-        W = np.stack([co.interpolate(g, main["W"][k], q) for k, g in enumerate(main["grids"])])
+        W = np.stack([collocation.interpolate(g, main["W"][k], q) for k, g in enumerate(main["grids"])])
     return s[:, None] * x, W / s[:, None, None], s[:, None] * wx

@@ -35,14 +35,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import get_lapack_funcs
 
-from persson_fp.solvers.schemes import TRBDF2_A as _BDF2_A
-from persson_fp.solvers.schemes import TRBDF2_B as _BDF2_B
-from persson_fp.solvers.schemes import TRBDF2_GAMMA as GAMMA
-from persson_fp.solvers.schemes import TRBDF2_W as _BDF2_W
+from persson_fp.solvers.schemes import TRBDF2_A, TRBDF2_B, TRBDF2_GAMMA, TRBDF2_W
 
 _gbsv = get_lapack_funcs("gbsv", dtype=np.float64)
 
-__all__ = ["AbsorbingWall", "YieldWall", "Coefficients", "assemble", "apply", "step", "outflux_low", "GAMMA"]
+__all__ = ["AbsorbingWall", "YieldWall", "Coefficients", "assemble", "apply", "step", "outflux_low"]
 
 LOWER, UPPER = 2, 1
 """Bandwidths of L in ``solve_banded`` form."""
@@ -193,12 +190,12 @@ def step(coef_at, t: float, dt: float, y: np.ndarray, h: float, scheme: str = "t
         return y1, 0.5 * dt * (outflux_low(c0, y, h) + outflux_low(c1, y1, h))
     if scheme != "tr-bdf2":
         raise ValueError(f"scheme must be 'tr-bdf2', 'crank-nicolson', 'implicit' or 'be-halves', got {scheme!r}")
-    tg = t + GAMMA * dt
+    tg = t + TRBDF2_GAMMA * dt
     cg = coef_at(tg)
     c1 = coef_at(t + dt)
     L0 = assemble(c0, h)
-    ys = _solve(assemble(cg, h), 0.5 * GAMMA * dt, y + 0.5 * GAMMA * dt * (apply(L0, y) + f(t) + f(tg)))
-    js = 0.5 * GAMMA * dt * (outflux_low(c0, y, h) + outflux_low(cg, ys, h))
-    y1 = _solve(assemble(c1, h), _BDF2_W * dt, _BDF2_A * ys - _BDF2_B * y + _BDF2_W * dt * f(t + dt))
-    j1 = _BDF2_A * js + _BDF2_W * dt * outflux_low(c1, y1, h)
+    ys = _solve(assemble(cg, h), 0.5 * TRBDF2_GAMMA * dt, y + 0.5 * TRBDF2_GAMMA * dt * (apply(L0, y) + f(t) + f(tg)))
+    js = 0.5 * TRBDF2_GAMMA * dt * (outflux_low(c0, y, h) + outflux_low(cg, ys, h))
+    y1 = _solve(assemble(c1, h), TRBDF2_W * dt, TRBDF2_A * ys - TRBDF2_B * y + TRBDF2_W * dt * f(t + dt))
+    j1 = TRBDF2_A * js + TRBDF2_W * dt * outflux_low(c1, y1, h)
     return y1, j1

@@ -1,4 +1,4 @@
-r"""A scale-dependent hardness: the moving yield wall, front-fixed onto the general engine.
+r"""A scale-dependent hardness: the moving yield wall, front-fixed onto the general fluxes.
 
 The physics (Persson, Phys. Rev. Lett. 87 (2001) 116101; Surf. Sci. Rep. 61 (2006) 201, Sec. 3).  On
 :math:`0 < p < \sigma_Y(\zeta)` the PDF obeys :math:`\partial_\tau P = \tfrac12\partial_p^2 P` in the effective
@@ -39,9 +39,9 @@ import numpy as np
 
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.solution import SolverError
-from persson_fp.solvers.front_fixed import fluxes as engine
+from persson_fp.solvers.front_fixed import fluxes
 from persson_fp.solvers.front_fixed.domain import coefficient_domain
-from persson_fp.solvers.schemes import graded
+from persson_fp.solvers.schemes import TRBDF2_GAMMA, graded
 from persson_fp.theory.fudge import NoFudge
 from persson_fp.theory.strip import strip_cdf, strip_quantities
 
@@ -111,7 +111,7 @@ class MovingWall:
     def prefill(self, V_nodes):
         """Evaluate the wall at every stage time of a march over ``V_nodes`` at once (the engine's expressions)."""
         t, dt = V_nodes[:-1], np.diff(V_nodes)
-        pts = np.concatenate([V_nodes, t + engine.GAMMA * dt, t + dt, t + 0.5 * dt, (t + 0.5 * dt) + 0.5 * dt])
+        pts = np.concatenate([V_nodes, t + TRBDF2_GAMMA * dt, t + dt, t + 0.5 * dt, (t + 0.5 * dt) + 0.5 * dt])
         s, sV = self.wall_many(pts)
         self._cache.update(zip(pts.tolist(), zip(s.tolist(), sV.tolist())))
 
@@ -128,7 +128,7 @@ class MovingWall:
         S_bar = np.broadcast_to(np.asarray(S_bar, dtype=float), (m,))
         D = (S_bar / (2.0 * s * s))[:, None] * np.ones(self.n + 1)
         v = np.broadcast_to((sV / s) * self.x_faces, (m, self.n + 1))
-        return engine.Coefficients(D=D, v=v, beta=2.0 * s * sV / S_bar)
+        return fluxes.Coefficients(D=D, v=v, beta=2.0 * s * sV / S_bar)
 
     def _general_coefficients(self, V):
         r"""Front-fixed form of :math:`\partial_V P = -\partial_p(b_1P) + \tfrac12\partial_p^2(b_2P)`, b = B / V'(zeta):
@@ -151,7 +151,7 @@ class MovingWall:
             raise ValueError(f"B2 must be > 0 at a moving yield wall (p = {s:.6g}, zeta = {z:.6g}), got {B2f[-1]!r}")
         beta = 2.0 * s * sV / b2f[-1] if sV > 0 else 0.0
         m = pr.n_loads
-        c = engine.Coefficients(
+        c = fluxes.Coefficients(
             D=np.broadcast_to(b2f / (2.0 * s * s), (m, self.n + 1)),
             v=np.broadcast_to(v, (m, self.n + 1)),
             beta=np.full(m, beta),
@@ -302,10 +302,10 @@ class MovingWall:
                 if coupling == "lagged":
                     S_bar = Sn
                 else:
-                    out_rate = engine.outflux_low(self.coefficients(Va, np.ones(m)), y, h)  # per unit tau
+                    out_rate = fluxes.outflux_low(self.coefficients(Va, np.ones(m)), y, h)  # per unit tau
                     S_bar = 0.5 * (Sn + S(np.clip(A_now - dV * Sn * out_rate, 0.0, 1.0)))
             coef = lambda V, S_bar=S_bar: self.coefficients(V, S_bar)  # noqa: E731
-            y, j = engine.step(coef, Va, dV, y, h, "be-halves" if k < damped else scheme, source)
+            y, j = fluxes.step(coef, Va, dV, y, h, "be-halves" if k < damped else scheme, source)
             absorbed += j
             rate_b = self.drift_rate(Vb, y)
             drift += 0.5 * dV * (rate + rate_b)  # trapezoid in V: second order, like the march

@@ -11,10 +11,7 @@ import numpy as np
 from scipy import fft as _fft
 
 from persson_fp.solvers.fv.operators import SPACES
-from persson_fp.solvers.schemes import TRBDF2_A as _BDF2_A
-from persson_fp.solvers.schemes import TRBDF2_B as _BDF2_B
-from persson_fp.solvers.schemes import TRBDF2_GAMMA as _GAMMA
-from persson_fp.solvers.schemes import TRBDF2_W as _BDF2_W
+from persson_fp.solvers.schemes import TRBDF2_A, TRBDF2_B, TRBDF2_GAMMA, TRBDF2_W
 
 
 # -- the spectral fast path: L and M are diagonal in the DST-II basis ------------------------------
@@ -79,15 +76,15 @@ def _amplification(kind: str, theta: float, x, work=None):
         # both stages share 1 - h, h = gamma x / 2 = W x: the trapezoidal stage is Rs = (1 + h)/(1 - h),
         # then R = (A Rs - B)/(1 - h) = (1 + (A + B) h)/(1 - h)^2 (A - B = 1) and the wall-flux weight
         # F = (A gamma / 2)(Rs + 1) + W R = A gamma/(1 - h) + W R
-        np.multiply(x, -_BDF2_W, out=T)
+        np.multiply(x, -TRBDF2_W, out=T)
         T += 1.0
         np.divide(1.0, T, out=T)  # 1/(1 - h)
-        np.multiply(x, (_BDF2_A + _BDF2_B) * _BDF2_W, out=R)
+        np.multiply(x, (TRBDF2_A + TRBDF2_B) * TRBDF2_W, out=R)
         R += 1.0
         R *= T
         R *= T
-        np.multiply(R, _BDF2_W, out=F)
-        T *= _BDF2_A * _GAMMA
+        np.multiply(R, TRBDF2_W, out=F)
+        T *= TRBDF2_A * TRBDF2_GAMMA
         F += T
     elif kind == "be-halves":
         np.multiply(x, -0.5, out=T)
@@ -111,8 +108,8 @@ def _growth(kind: str, theta: float, x):
     """The amplification factor R of ``_amplification`` alone (no wall-flux weight): the trajectory
     sweeps of the fudge coupling need only R."""
     if kind == "tr-bdf2":
-        T = 1.0 / (1.0 - _BDF2_W * x)
-        return (1.0 + ((_BDF2_A + _BDF2_B) * _BDF2_W) * x) * (T * T)
+        T = 1.0 / (1.0 - TRBDF2_W * x)
+        return (1.0 + ((TRBDF2_A + TRBDF2_B) * TRBDF2_W) * x) * (T * T)
     if kind == "be-halves":
         T = 1.0 / (1.0 - 0.5 * x)
         return T * T

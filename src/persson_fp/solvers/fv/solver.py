@@ -86,7 +86,7 @@ from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers.base import Solver, SolverOutput, StationRecorder, check_float, check_int
 from persson_fp.solvers.front_fixed.estimate import finish, run_pair
 from persson_fp.solvers.front_fixed.start import general_start, singular_step_error
-from persson_fp.solvers.fv.dst import _amplification, _growth, dst_eigenvalues  # noqa: F401
+from persson_fp.solvers.fv.dst import dst_eigenvalues  # noqa: F401
 from persson_fp.solvers.fv.operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
     COUPLINGS,
     LINALGS,
@@ -102,11 +102,7 @@ from persson_fp.solvers.fv.operators import (  # noqa: F401  (re-exported: the o
 )
 from persson_fp.solvers.fv.spectral import DSTMarch
 from persson_fp.solvers.fv.stepping import STEPPINGS, step_kind, step_nodes, zeta_of_V
-from persson_fp.solvers.schemes import SCHEMES
-from persson_fp.solvers.schemes import TRBDF2_A as _BDF2_A
-from persson_fp.solvers.schemes import TRBDF2_B as _BDF2_B
-from persson_fp.solvers.schemes import TRBDF2_GAMMA as _GAMMA
-from persson_fp.solvers.schemes import TRBDF2_W as _BDF2_W
+from persson_fp.solvers.schemes import SCHEMES, TRBDF2_A, TRBDF2_B, TRBDF2_GAMMA, TRBDF2_W
 from persson_fp.theory.fudge import NoFudge
 from persson_fp.theory.image import tail_mass
 
@@ -354,11 +350,11 @@ class FiniteVolumeSolver(Solver):
             """One step of the chosen scheme: (P_new, dJ0, dJN)."""
             kind = step_kind(o, n)
             if kind == "tr-bdf2":
-                Ps, j0s, jNs = theta_step(P, _GAMMA * dtau, 0.5)
-                apply_mass(_BDF2_A * Ps - _BDF2_B * P, space, out=MP)
-                Pn = np.ascontiguousarray(solver.solve(_BDF2_W * dtau, MP))
+                Ps, j0s, jNs = theta_step(P, TRBDF2_GAMMA * dtau, 0.5)
+                apply_mass(TRBDF2_A * Ps - TRBDF2_B * P, space, out=MP)
+                Pn = np.ascontiguousarray(solver.solve(TRBDF2_W * dtau, MP))
                 c0, cN = wall_flux(Pn, dp)
-                return Pn, _BDF2_A * j0s + _BDF2_W * dtau * c0, _BDF2_A * jNs + _BDF2_W * dtau * cN
+                return Pn, TRBDF2_A * j0s + TRBDF2_W * dtau * c0, TRBDF2_A * jNs + TRBDF2_W * dtau * cN
             if kind == "be-halves":
                 Ph, a0, aN = theta_step(P, 0.5 * dtau, 1.0)
                 Pn, b0_, bN_ = theta_step(np.ascontiguousarray(Ph), 0.5 * dtau, 1.0)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from persson_fp.results.solution import SolverError
-from persson_fp.solvers.front_fixed import fluxes as engine
+from persson_fp.solvers.front_fixed import fluxes
 from persson_fp.solvers.front_fixed.moving_wall import MovingWall
 from persson_fp.solvers.front_fixed.start import clear_start_V, singular_step_error
 
@@ -78,10 +78,10 @@ def solve_lines(
         S_now = np.ones(m) if mw.no_fudge else S(total_area(wa))
         c = mw.coefficients(V, S_now)
         out = np.empty((m, k))
-        out[:, : n + 1] = engine.apply(engine.assemble(c, h), wa)
+        out[:, : n + 1] = fluxes.apply(fluxes.assemble(c, h), wa)
         if source is not None:
             out[:, : n + 1] += source(V)
-        out[:, n + 1] = engine.outflux_low(c, wa, h)
+        out[:, n + 1] = fluxes.outflux_low(c, wa, h)
         out[:, n + 2] = mw.drift_rate(V, wa)
         return out.ravel()
 
@@ -89,7 +89,7 @@ def solve_lines(
         wa, _ = split(y)
         S_now = np.ones(m) if mw.no_fudge else S(total_area(wa))
         c = mw.coefficients(V, S_now)
-        ab = engine.assemble(c, h)
+        ab = fluxes.assemble(c, h)
         blocks = []
         for j in range(m):
             Lj = sp.diags(
@@ -98,7 +98,7 @@ def solve_lines(
             J = sp.lil_matrix((k, k))
             J[: n + 1, : n + 1] = Lj
             D_wall = np.atleast_2d(c.D if c.D_cells is None else c.D_cells)[j, 0]
-            J[n + 1, 0] = -engine.AbsorbingWall.flux_coefficient(float(D_wall), h)
+            J[n + 1, 0] = -fluxes.AbsorbingWall.flux_coefficient(float(D_wall), h)
             if mw.general:
                 J[n + 2, :n] = mw.drift_cells(V) * h
             blocks.append(J.tocsr())

@@ -70,7 +70,7 @@ from persson_fp.results.solution import SolverError
 from persson_fp.solvers.base import LOAD_HANDLERS, Solver, SolverOutput, check_float, check_int, check_k_domain
 from persson_fp.solvers.front_fixed.estimate import finish, run_pair
 from persson_fp.solvers.front_fixed.start import general_start
-from persson_fp.solvers.mol import ivp_march as _ivp_march
+from persson_fp.solvers.mol import ivp_march
 from persson_fp.solvers.mol.grid import MOLSystem, laplacian, laplacian_readable, quadrature_weights, start_pdf, start_V
 from persson_fp.solvers.mol.lines import solve_lines
 from persson_fp.theory.fudge import NoFudge
@@ -430,7 +430,7 @@ class MethodOfLinesSolver(Solver):
         t_end = sysm.t1 if sysm.augmented else float(t_eval[-1])
         # in tau the Jacobian's P part is one Laplacian block per load, shared: factor it once per step
         blocks = (nl, m) if o["variable"] == "tau" else None
-        solver = _ivp_march.make_solver(method, sysm.fun, sysm.t0, sysm.y0, t_end, blocks=blocks, **kw)
+        solver = ivp_march.make_solver(method, sysm.fun, sysm.t0, sysm.y0, t_end, blocks=blocks, **kw)
         deadline = time.perf_counter() + self.max_time
         try:
             if sysm.augmented:
@@ -442,15 +442,15 @@ class MethodOfLinesSolver(Solver):
                     A = P @ w if sig is None else P @ w + (pr.p_bar[j] - P @ (w * pi)) / sig
                     return pr.fudge.S(A)
 
-                tau_st, P, steps = _ivp_march.march_own(
+                tau_st, P, steps = ivp_march.march_own(
                     solver, n + np.arange(nl), np.arange(n).reshape(nl, m), V_out, S_of, "mol", deadline=deadline
                 )
                 tau_info = tau_st
             else:
-                Y, steps = _ivp_march.march_shared(solver, t_eval, "mol", deadline=deadline)
+                Y, steps = ivp_march.march_shared(solver, t_eval, "mol", deadline=deadline)
                 P = Y.T.reshape(n_z, nl, m)
                 tau_info = t_eval if o["variable"] == "tau" else None
-        except _ivp_march.BudgetExceeded as err:
+        except ivp_march.BudgetExceeded as err:
             raise SolverError(
                 f"{err} (max_time = {self.max_time:.3g} s); use a coarser grid or a looser rtol, or pass a "
                 "larger max_time (seconds)"
