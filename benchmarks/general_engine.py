@@ -49,8 +49,8 @@ import persson_fp as pf
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from _common import machine, markdown_table, outdir, parser, write_csv  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests", "solvers"))
-import test_chebyshev as tcheb  # noqa: E402  (the squared-Bessel reference and the polynomial's L1, written there)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests"))
+import solvers.chebyshev.test_separable as tcheb  # noqa: E402  (the squared-Bessel reference and the polynomial's L1, written there)
 
 TARGETS = (1e-4, 1e-6, 1e-8, 1e-10)
 V_START = 2e-3

@@ -38,9 +38,9 @@ from persson_fp.solvers.chebyshev import magnus
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests", "solvers"))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests"))
 from _common import machine, outdir, parser, write_csv  # noqa: E402
-from test_chebyshev_honesty import poly_cell_masses  # noqa: E402
+from solvers.chebyshev.test_error_estimates import poly_cell_masses  # noqa: E402
 
 REF = pf.ContactProblem.reference()
 PSD, PB, VMAX = REF.psd, float(REF.p_bar[0]), float(REF.V_max)

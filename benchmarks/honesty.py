@@ -2,14 +2,14 @@
 
 The cases and their independent references (Brownian motion with drift and zeta-dependent diffusion, the squared
 Bessel process for B2 = (1 + p/(2 p_bar)) dV/dzeta, the strip series with a hardness) are those of
-``tests/solvers/test_honesty.py``.  For every case: the worst ratio over stations of the true error (L1 of P0,
-contact area) to the solver's own estimate, and for tol= runs whether the true error exceeded tol.
+``tests/solvers/front_fixed/test_error_estimates.py``.  For every case: the worst ratio over stations of the true
+error (L1 of P0, contact area) to the solver's own estimate, and for tol= runs whether the true error exceeded tol.
 
     python benchmarks/honesty.py [--quick] [--n 320] [--seed 2026]  ->  results/honesty.{csv,md}
     python benchmarks/honesty.py --method chebyshev [--n 320]  ->  results/honesty_chebyshev.csv, honesty.md
 
-``--method chebyshev`` draws from ``tests/solvers/test_chebyshev_honesty.py`` instead: the same families plus the
-homogenised strip against pf.exact and a non-separable Ornstein--Uhlenbeck family (Gaussian reference), every class
+``--method chebyshev`` draws from ``tests/solvers/chebyshev/test_error_estimates.py`` instead: the same families plus
+the homogenised strip against pf.exact and a non-separable Ornstein--Uhlenbeck family (Gaussian reference), every class
 method "chebyshev" accepts (separable, clock, the adaptive march -- forced on exact clocks too -- and a constant
 hardness), with the true L1 error of its polynomial on 3000 cells.  honesty.md then reports both engines.
 """
@@ -25,10 +25,10 @@ import numpy as np
 from _common import machine, outdir, parser, write_csv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests", "solvers"))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests"))
 
-import test_chebyshev_honesty as tc  # noqa: E402
-import test_honesty as th  # noqa: E402
+import solvers.chebyshev.test_error_estimates as tc  # noqa: E402
+import solvers.front_fixed.test_error_estimates as th  # noqa: E402
 
 
 def main(argv=None):
@@ -88,7 +88,8 @@ def _chebyshev_lines(rows):
         "",
         "## method chebyshev",
         "",
-        "`python benchmarks/honesty.py --method chebyshev` (cases of `tests/solvers/test_chebyshev_honesty.py`)",
+        "`python benchmarks/honesty.py --method chebyshev` "
+        "(cases of `tests/solvers/chebyshev/test_error_estimates.py`)",
         "",
         f"- cases drawn: {len(rows)}; run: {len(ran)}; refused with an error: {len(rows) - len(ran)} (a fixed coarse "
         "degree breaking an invariant, or a march over its step limit: refused openly)",

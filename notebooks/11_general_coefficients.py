@@ -105,14 +105,14 @@ plt.show()
 # dimension 0 in $V$, whose transition density is known in closed form,
 # $p_V(x, y) = \frac{1}{2V}\sqrt{x/y}\,e^{-(x+y)/2V} I_1(\sqrt{xy}/V)$ (Revuz & Yor, *Continuous Martingales and
 # Brownian Motion*, Ch. XI). Started from it at a small $V$ and carried to $V(\zeta_{max})$ on a finer, wider
-# Chebyshev grid with exact steps (`tests/solvers/test_chebyshev.py`; two resolutions, whose spread bounds its own
+# Chebyshev grid with exact steps (`tests/solvers/chebyshev/test_separable.py`; two resolutions, whose spread bounds its own
 # error), it is the reference for both engines: `chebyshev` asked for `tol` from $10^{-3}$ to $10^{-10}$, `fv` on
 # 100 to 400 cells. Each filled point is the true L1 error of $P_0$ at $\zeta_{max}$; the open marker is the error
 # the solver *reported* (`sol.error_estimate["L1"]`).
 
 # %%
-sys.path.insert(0, str(Path.cwd().parent / "tests" / "solvers"))
-from test_chebyshev import besq_reference, chebyshev_l1  # noqa: E402  (the test suite's reference)
+sys.path.insert(0, str(Path.cwd().parent / "tests"))
+from solvers.chebyshev.test_separable import besq_reference, chebyshev_l1  # noqa: E402  (the test suite's reference)
 
 pdf, A_ref, _ = besq_reference(p_bar, ref.V_max, n=160, V_start_frac=3e-3, e_k=50.0, L_k=45.0)
 pdf2, A_ref2, _ = besq_reference(p_bar, ref.V_max, n=200, V_start_frac=1e-3, e_k=8.0, L_k=45.0)
@@ -163,10 +163,11 @@ plt.show()
 # ## Manufactured solution: the order of the scheme
 # With $b_1 = 0.3\,p/L$, $b_2 = 0.8(1 + 0.5\,p/L)$ (times $dV/d\zeta$) and the source that makes
 # $P^* = e^{-V/T}\sin(\pi p/L)(1 + p/2L)$ exact, the error of `fv`'s fluxes (front-fixed engine, TR-BDF2) falls as
-# $h^2$ in the cell width and as $\Delta V^2$ in the step. The same code runs in `tests/solvers/test_general.py`.
+# $h^2$ in the cell width and as $\Delta V^2$ in the step. The same code runs in
+# `tests/solvers/front_fixed/test_manufactured_solution.py`.
 
 # %%
-from test_general import _run  # noqa: E402  (the manufactured solution of the test suite)
+from solvers.front_fixed.test_manufactured_solution import _run  # noqa: E402  (the test suite's)
 
 ns = np.array([20, 40, 80, 160])
 err_p = np.array([_run(n, steps=200)[0] for n in ns])

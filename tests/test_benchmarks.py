@@ -114,7 +114,7 @@ def test_contact_area_curve_quick(tmp_path):
         assert exact and exact[0]["max_rel_error_vs_direct_ode"] < 1e-10 and exact[0]["loads_per_s"] > 0
         pde = [r for r in summary if r["model"] == model and r["method"] != "exact"]
         assert {"sines", "fv"} <= {r["method"] for r in pde}
-        # the sine series (modes for 1e-13) reaches the 1e-6 on every load, and one method is marked
+        # the sine series (modes for 1e-13) reaches the target 1e-6 on every load, and one method is marked
         assert next(r for r in pde if r["method"] == "sines")["max_abs_area_error"] < 1e-6
         assert sum(bool(r["fastest_reaching_1e-06"]) for r in pde) == 1
 

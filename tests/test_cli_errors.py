@@ -1,8 +1,10 @@
-"""The command never prints a traceback (issue 15): every error is one line and exit code 2, Ctrl-C is
-"interrupted" and 130, an interrupted write leaves no file, options that would be ignored are refused."""
+"""The command never prints a traceback: every error is one line and exit code 2, Ctrl-C is
+"interrupted" and 130, an interrupted write leaves no file, an existing output needs --force, written files get the
+umask's default mode, options that would be ignored are refused."""
 
 import csv
 import os
+import stat
 import subprocess
 import sys
 
@@ -146,3 +148,74 @@ def test_seed_makes_monte_carlo_reproducible(tmp_path):
         assert main(["solve", "--method", "monte-carlo", "--seed", seed, "--output", str(out)]) == 0
         runs[name] = out.read_text()
     assert runs["a"] == runs["b"] != runs["c"]
+
+
+def _spectrum_csv(path):
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, 0.8, 1.0, 2.0, 128.0)
+    q = np.geomspace(1.0, 128.0, 40)
+    np.savetxt(path, np.column_stack((q, psd.C(q))), delimiter=",", header="q,C", comments="")
+
+
+def test_surface_on_an_empty_npy_is_one_line(tmp_path, capsys):
+    (tmp_path / "empty.npy").write_bytes(b"")  # was an EOFError traceback
+    _one_line_error(capsys, main(["surface", str(tmp_path / "empty.npy"), "--size", "1"]), "cannot read a height map")
+
+
+@pytest.mark.parametrize(("flag", "value", "word"), [("--tol", "5e-324", "--tol"), ("--atol", "-1", "--atol")])
+def test_solve_refuses_a_tolerance_out_of_range(flag, value, word, capsys):
+    # --tol 5e-324 was an OverflowError traceback; --atol -1 with fv only warned
+    _one_line_error(capsys, main(["solve", "--method", "auto" if flag == "--tol" else "fv", flag, value]), word)
+
+
+def test_surface_caps_the_number_of_loads(tmp_path, capsys):
+    np.save(tmp_path / "h.npy", np.random.default_rng(0).standard_normal((16, 16)))
+    # 1e7 loads ran past 120 s; "area" caps at 1e6
+    _one_line_error(
+        capsys, main(["surface", str(tmp_path / "h.npy"), "--size", "1", "--n-loads", "10000000"]), "--n-loads"
+    )
+
+
+def test_sweep_does_not_overwrite_without_force_and_writes_plain_csv(tmp_path, capsys):
+    pd = pytest.importorskip("pandas")
+    _spectrum_csv(tmp_path / "s.csv")
+    out = tmp_path / "out" / "t.csv"
+    args = ["sweep", str(tmp_path / "s.csv"), "--n-loads", "3", "--models", "none", "--no-progress"]
+    assert main([*args, "--output", str(out)]) == 0
+    capsys.readouterr()
+    _one_line_error(capsys, main([*args, "--output", str(out)]), "--force")  # was overwritten silently
+    assert main([*args, "--output", str(out), "--force"]) == 0
+    df = pd.read_csv(out)  # plain pandas: was one column because of the "#" metadata lines
+    assert {"surface", "model", "quantity", "value"} <= set(df.columns) and len(df) == 3
+    assert pf.read_sweep_table(out).attrs["method"] == "exact"
+    assert sorted(os.listdir(out.parent)) == ["t.csv", "t.csv.json"]  # no temporary file left behind
+
+
+def test_an_interrupted_sweep_leaves_no_partial_table(tmp_path, monkeypatch, capsys):
+    from persson_fp.sweeps.table import SweepResult
+
+    _spectrum_csv(tmp_path / "s.csv")
+    out = tmp_path / "t.csv"
+    out.write_text("old")
+
+    def interrupted(self, path):
+        with open(path, "w") as fh:
+            fh.write("partial")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(SweepResult, "to_csv", interrupted)
+    argv = ["sweep", str(tmp_path / "s.csv"), "--n-loads", "3", "--models", "none", "--no-progress", "--force"]
+    assert main([*argv, "--output", str(out)]) == 130
+    assert out.read_text() == "old" and sorted(os.listdir(tmp_path)) == ["s.csv", "t.csv"]
+
+
+def test_written_files_get_the_umask_default_mode(tmp_path, capsys):
+    mask = os.umask(0o022)
+    try:
+        out = tmp_path / "p.csv"
+        assert main(["solve", "--method", "sines", "--output", str(out)]) == 0  # was 0600 (mkstemp)
+        assert stat.S_IMODE(os.stat(out).st_mode) == 0o644
+        assert main(["area", "--n-loads", "20", "--output", str(tmp_path / "a")]) == 0
+        for name in os.listdir(tmp_path / "a"):
+            assert stat.S_IMODE(os.stat(tmp_path / "a" / name).st_mode) == 0o644, name
+    finally:
+        os.umask(mask)

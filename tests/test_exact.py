@@ -1,5 +1,7 @@
 """Exact solutions against quadrature and independent computations."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -85,7 +87,7 @@ def _independent_area(H, ratio, fudge):
 @pytest.mark.parametrize("H", [0.0, 0.3, 0.8, 1.0])
 @pytest.mark.parametrize("fudge", [None, "YP08", "WM17"])
 def test_contact_area_agrees_with_independent_computation(H, fudge):
-    """Done-criterion of the foundation issue: 1e-8 relative, H in {0, .3, .8, 1}, 3 loads, 3 fudges."""
+    """1e-8 relative against an independent computation, H in {0, .3, .8, 1}, 3 loads, 3 fudges."""
     for ratio in (0.01, 0.5, 3.0):
         psd, pb, A_ref = _independent_area(H, ratio, fudge)
         A = pf.exact(pf.ContactProblem(psd, 1.0, pb, fudge)).contact_area
@@ -234,3 +236,14 @@ def test_tail_mass_is_the_complement_of_the_cdf():
         for j in range(3):
             ref = quad(lambda x: float(ex.pdf(x)[j]), p, np.inf, epsabs=1e-15, epsrel=1e-12)[0]
             assert got[j] == pytest.approx(ref, rel=1e-8, abs=1e-15)
+
+
+def test_exact_full_contact_at_every_load_names_the_cause():
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, 0.8, 1.0, 2.0, 128.0)
+    pr = pf.ContactProblem(psd, E_star=1.0, p_bar=[0.5, 0.9])  # sqrt(V) = 0.05: p_bar / sqrt(V) >= 10
+    with pytest.warns(UserWarning, match=r"full contact at every load.*p_bar / sqrt\(V\).*different units"):
+        ex = pf.exact(pr)
+    np.testing.assert_allclose(ex.contact_area, 1.0, rtol=0, atol=1e-15)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # an ordinary load is quiet
+        pf.exact(pf.ContactProblem.reference(p_bar_ratio=[0.5, 3.0]))

@@ -90,7 +90,7 @@ def test_windowed_crop_carries_its_rms_height_and_slope(case):
         assert abs(err) < 0.03
 
 
-def test_issue_map_without_roll_off_keeps_its_rms_height(rng):
+def test_map_without_roll_off_keeps_its_rms_height(rng):
     """512^2, H = 0.7, rms slope 0.2, L = 1 mm, no roll-off: the spectrum used to extend to pi / L (+56 %)."""
     h = fft_map(rng, (512, 512), (1e-3, 1e-3), 0.7, 0.0, np.inf)
     h *= 0.2 / spectral_slope(h, (1e-3, 1e-3))

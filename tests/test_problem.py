@@ -58,7 +58,7 @@ def test_V_of_tau_inverts_tau_of_V(fudge):
 @pytest.mark.parametrize("fudge", ["YP08", "WM17"])
 def test_huge_loads_small_V_do_not_underflow(fudge):
     """p_bar = 5e148 (allowed) and V / p_bar^2 below the smallest double: A* = 1, so tau = S(1) V exactly
-    (found by the review: V / p_bar^2 underflowed to 0 and tau came back 0)."""
+    (V / p_bar^2 once underflowed to 0 and tau came back 0)."""
     pr = pf.ContactProblem.reference(fudge=fudge, p_bar_ratio=1e150)
     V = pr.V_max * np.array([1e-30, 1e-25, 1e-20])
     S1 = float(pr.fudge.S(np.array(1.0)))
@@ -94,3 +94,42 @@ def test_tau_maps_refuse_negative_or_nan(bad):
         pr.tau_of_V(bad)
     with pytest.raises(ValueError, match="tau must be >= 0"):
         pr.V_of_tau_each(np.array([0.01, bad]))
+
+
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        ({"B2": lambda p, z: -p}, "B2 must be finite and >= 0"),
+        ({"B1": lambda p, z: np.nan * p}, "B1 must be finite"),
+        ({"B2": lambda p, z: np.ones(3)}, "vectorised"),
+        ({"B2": 3.0}, "B2 must be None or a callable"),
+        ({"fudge": "YP08"}, "fudge must be None"),
+    ],
+)
+def test_bad_coefficients(kw, match):
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=64.0)
+    with pytest.raises(ValueError, match=match):
+        pf.FokkerPlanckProblem(psd, p_bar=0.02, **kw)
+
+
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        ({"B2": lambda p, z: p + 1j}, r"B2 must be real: B2\(p = 0, zeta = 1\)"),
+        ({"B1": lambda p, z: 1 / 0}, r"B1\(p, zeta\) could not be evaluated at p in \[0, .*ZeroDivisionError"),
+        ({"B1": lambda p, z: np.ones((2, 3))}, "B1.*vectorised"),
+        ({"B1": lambda p, z: "x"}, "B1.*real numbers"),
+        ({"B2": lambda p, z: np.where(p > 0.1, np.inf, 1e-3)}, r"B2 must be finite and >= 0: B2\(p = 0.1"),
+        ({"B2": lambda p, z: np.full(p.shape, -1e-3 if z > 50 else 1e-3)}, r"B2 must be .*zeta = (6|1)"),
+    ],
+)
+def test_bad_coefficients_name_the_coefficient_and_where(kw, match):
+    ref = pf.ContactProblem.reference()
+    with pytest.raises(ValueError, match=match):
+        pf.FokkerPlanckProblem(ref.psd, p_bar=float(ref.p_bar[0]), **kw)
+
+
+def test_load_above_the_modulus_warns_in_terms_of_p_over_E():
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, 0.8, 1.0, 2.0, 128.0)
+    with pytest.warns(UserWarning, match=r"p_bar / E_star = 1e\+06 > 1.*same unit"):  # E* in GPa, p_bar in Pa
+        pf.ContactProblem(psd, E_star=1.0, p_bar=1e6)

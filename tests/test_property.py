@@ -1,4 +1,4 @@
-"""Property-based tests over random valid problems (issue 15): a finite result that keeps the invariants
+"""Property-based tests over random valid problems: a finite result that keeps the invariants
 and the method's stated accuracy, or a ValueError -- never a silent wrong answer.
 
 Problems: H in [0, 1], q_s/q_l in [2, 1e6], q_r/q_l in [1, 10], q_l in [1e-3, 1e3], rms slope in

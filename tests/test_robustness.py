@@ -1,7 +1,7 @@
-"""No silent wrong answers (issue 15): invariant breaches raise, extreme loads are accurate or refused,
+"""No silent wrong answers: invariant breaches raise, extreme loads are accurate or refused,
 bad input is a ValueError naming the argument, resources are estimated before they are spent.
 
-Every reproducer of the issue is one parametrized case here; the references are the closed form
+Every case of a wrong answer once found is one parametrized case here; the references are the closed form
 (:func:`persson_fp.exact`, ``eq:Area_Persson``) or the exact cell averages built from it.
 """
 
@@ -9,6 +9,7 @@ import warnings
 
 import numpy as np
 import pytest
+from scipy.special import ndtr
 
 import persson_fp as pf
 from persson_fp.results.solution import Solution, check_invariants
@@ -305,7 +306,7 @@ def test_budgets_are_overridable():
 
 @pytest.mark.parametrize("method", ["sines", "fv", "auto"])
 def test_an_infinite_budget_is_no_limit(method):
-    """max_time = inf was refused with 'max_time must lie in (0, inf]' (review): inf is no limit, for every method
+    """max_time = inf was once refused with 'max_time must lie in (0, inf]': inf is no limit, for every method
     and for auto; the result is the one of the default budgets, to the bit."""
     sol = pf.solve(_PR, method, max_time=float("inf"), max_memory=np.inf)
     assert np.array_equal(sol.contact_area, pf.solve(_PR, method).contact_area)
@@ -314,9 +315,9 @@ def test_an_infinite_budget_is_no_limit(method):
 @pytest.mark.parametrize(
     ("kwargs", "match"),
     [
-        ({"zeta_out": 1.0}, "zeta_out must lie in"),  # an OverflowError in auto's planning (review)
-        ({"zeta_out": []}, "zeta_out must hold"),  # numpy's 'zero-size array' (review)
-        ({"max_time": float("nan")}, "max_time"),  # an UnboundLocalError in auto (review)
+        ({"zeta_out": 1.0}, "zeta_out must lie in"),  # (was an OverflowError in auto's planning)
+        ({"zeta_out": []}, "zeta_out must hold"),  # (was numpy's 'zero-size array')
+        ({"max_time": float("nan")}, "max_time"),  # (was an UnboundLocalError in auto)
         ({"max_memory": -1.0}, "max_memory"),
     ],
 )
@@ -325,3 +326,32 @@ def test_auto_checks_stations_and_budgets_first(kwargs, match):
     for problem in (fp, _PR):
         with pytest.raises(ValueError, match=match):
             pf.solve(problem, "auto", **kwargs)
+
+
+def _cells(pr, z):
+    """Exact cell averages of the image solution (normal CDF differences, written here) on 400 cells."""
+    edges = np.linspace(0.0, pr.p_max(10.0), 401)
+    s = np.sqrt(np.asarray(pr.V(z)))[:, None, None]
+    pb = pr.p_bar[None, :, None]
+    F = ndtr((edges - pb) / s) - ndtr((edges + pb) / s)
+    return edges, np.diff(F, axis=-1) / np.diff(edges)
+
+
+def test_mass_and_moment_law_breaches_are_named():
+    """A* against 1 - absorbed (mass balance) and, for general coefficients, the load against info['load_law']."""
+    pr = REF()
+    psd, pb = pr.psd, float(pr.p_bar[0])
+    z = np.array([8.0, 128.0])
+    edges, P = _cells(pr, z)
+    A = P.sum(axis=-1) * np.diff(edges)[0]
+    mid, w = 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
+    ok = Solution.build("cells", pr, z, mid, P, w, "cell", 0.0, contact_area_flux=A)
+    assert ok.info["checks"]["mass_balance"] < 1e-14
+    with pytest.raises(pf.SolverError, match="mass_balance"):
+        Solution.build("cells", pr, z, mid, P, w, "cell", 0.0, contact_area_flux=A - 1e-3)
+    gen = pf.FokkerPlanckProblem(psd, p_bar=pb, B2=lambda p, zz: psd.dV_dzeta(zz) + 0 * p)
+    law = np.full((2, 1), pb)
+    good = Solution.build("cells", gen, z, mid, P, w, "cell", 0.0, info={"load_law": law})
+    assert good.info["checks"]["load_law"] == "first-moment law"
+    with pytest.raises(pf.SolverError, match="first-moment law"):
+        Solution.build("cells", gen, z, mid, P, w, "cell", 0.0, info={"load_law": 1.2 * law})

@@ -40,7 +40,7 @@ def test_plain_theory_against_persson_2007_integral(ratio):
     p = ratio * np.sqrt(float(psd.V(E_star=E)))
     ref = persson_2007_q_integral(psd, p, E)
     # the reference is adaptive quadrature at 1e-13 of a smooth integrand; the package's rule is accurate to
-    # ~1e-10 (measured: <= 3e-11 on this surface): 1e-8 is the requirement
+    # ~1e-10 (measured: <= 3e-11 on this surface): 1e-8 is the accuracy required
     assert ms.mean_separation(p) == pytest.approx(ref, rel=1e-8)
 
 
@@ -180,3 +180,16 @@ def test_separation_from_area_histories_exact_and_numerical():
         pf.separation_from_areas(PSD, 1.0, p, z, np.ones((3, 3)))
     with pytest.raises(ValueError, match="increasing"):
         pf.separation_from_areas(PSD, 1.0, p[::-1], z, np.ones((z.size, p.size)))
+
+
+def test_mean_separation_guards():
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, 0.8, 1.0, 2.0, 128.0)
+    with pytest.raises(ValueError, match="E_star"):  # was "cannot convert float NaN to integer"
+        pf.MeanSeparation(psd, E_star=1e308)
+    with pytest.raises(ValueError, match=r"n_per_unit must be an integer in \[1, 1000\]"):  # was MemoryError
+        pf.MeanSeparation(psd, n_per_unit=10**7)
+    ms = pf.MeanSeparation(psd)
+    with pytest.raises(ValueError, match="full contact"):  # was inf
+        ms.stiffness(1e300)
+    # below the limit the stiffness is finite: K = p / (dU/dp), dU/dp > 0
+    assert np.isfinite(ms.stiffness(20 * ms.sigma_max)) and ms.mean_separation(1e300) == 0.0

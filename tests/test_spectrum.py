@@ -35,7 +35,7 @@ def test_moments_closed_form_vs_quad(H, q_r, zeta):
         assert psd.dV_dzeta(zeta, E) == pytest.approx(fd, rel=1e-7)
 
 
-def test_seed_closed_forms():
+def test_tutorial_closed_forms():
     """eq:Vh_closed_form and eq:Vp_closed_form as printed in the Xu et al. tutorial, 0 < H < 1."""
     C0, H, ql, qr, qs, E = 3e-4, 0.7, 2.0, 8.0, 256.0, 1.7
     psd = pf.SelfAffinePSD(C0, H, ql, qr, qs)
@@ -192,3 +192,8 @@ def test_zeta_of_V_tabulated():
     tab = pf.TabulatedPSD(q, 1e-3 * q**-3.1 * (1 + 0.3 * np.sin(q)))
     z = np.geomspace(1, 100, 200)
     np.testing.assert_allclose(tab.zeta_of_V(tab.V(z)), z, rtol=1e-12)
+
+
+def test_tabulated_band_limits_must_be_numbers():
+    with pytest.raises(ValueError, match="q_l must be a real number"):  # was TypeError
+        pf.TabulatedPSD([1.0, 2.0, 4.0], [1.0, 0.5, 0.1], q_l=[1, 2])

@@ -247,7 +247,7 @@ def test_surface_topography_objects(rng):
     s = pf.from_surface_topography(topo)
     assert s.psd.rms_height == pytest.approx(rms_h, rel=0.01)
     assert s.psd.rms_slope == pytest.approx(rms_s, rel=0.01)
-    # the issue's trap: SurfaceTopography's power_spectrum_from_area is C_iso = (2 pi)^2 C
+    # the trap: SurfaceTopography's power_spectrum_from_area is C_iso = (2 pi)^2 C
     q, C_iso = topo.power_spectrum_from_area()
     m = np.isfinite(C_iso) & (C_iso > 0) & (q > 0)
     wrong = pf.TabulatedPSD(q[m], C_iso[m])
@@ -261,3 +261,45 @@ def test_surface_topography_objects(rng):
     assert s1.source.startswith("SurfaceTopography UniformLineScan")
     with pytest.raises(ValueError, match="topography must be"):
         pf.from_surface_topography(object())
+
+
+def _spectrum_csv(path):
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, 0.8, 1.0, 2.0, 128.0)
+    q = np.geomspace(1.0, 128.0, 40)
+    np.savetxt(path, np.column_stack((q, psd.C(q))), delimiter=",", header="q,C", comments="")
+
+
+def test_readers_refuse_an_int_and_keep_the_callers_file(tmp_path):
+    path = tmp_path / "s.csv"
+    _spectrum_csv(path)
+    with open(path) as fh:
+        for read in (
+            lambda: pf.TabulatedPSD.from_csv(fh.fileno()),
+            lambda: pf.read_contact_engineering_csv(fh.fileno()),
+            lambda: pf.read_heightmap(fh.fileno(), 1.0),
+        ):
+            with pytest.raises(ValueError, match="path must be a file name"):
+                read()
+        assert fh.readline().startswith("q,C")  # the caller's file is still open
+
+
+def test_readers_name_a_folder(tmp_path):
+    with pytest.raises(ValueError, match="is a folder"):
+        pf.TabulatedPSD.from_csv(tmp_path)  # was IsADirectoryError
+    with pytest.raises(ValueError, match="is a folder"):
+        pf.read_contact_engineering_csv(tmp_path)
+
+
+def test_complex_heights_error_is_one_line():
+    """A complex height map's error printed the whole array (hundreds of characters); now its shape and first value."""
+    with pytest.raises(ValueError, match=r"heights must be real.*shape \(64, 64\), first element") as err:
+        pf.psd_from_heightmap(np.ones((64, 64)) * (1 + 1j), 1.0)
+    assert len(str(err.value)) < 200 and "\n" not in str(err.value)
+
+
+def test_one_value_text_map_reports_its_shape(tmp_path):
+    """A 1 x 1 text map was reported as "shape ()" (numpy's loadtxt drops the axes); now (1, 1)."""
+    path = tmp_path / "one.txt"
+    path.write_text("1.5\n")
+    with pytest.raises(ValueError, match=r"at least 4 points per side, got shape \(1, 1\)"):
+        pf.read_heightmap(str(path), 1.0)

@@ -94,3 +94,18 @@ def test_unreachable_tol_raises(monkeypatch):
     monkeypatch.setattr(auto, "MAX_CELLS", 100)
     with pytest.raises(pf.SolverError, match="would need more than 100"):
         pf.solve(_general(), method="fv", tol=1e-9, n_p=40, n_steps=20)
+
+
+def test_auto_picks_a_resolution_the_engine_accepts():
+    """The README's moving-wall scene: the engine demands n_p >= 53; auto's first attempt must be above that
+    (before: n_p = 50 and a ValueError)."""
+    from persson_fp.solvers.auto import _first_options
+    from persson_fp.solvers.front_fixed.moving_wall import min_cells
+
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=128.0)
+    pr = pf.ContactProblem(psd, p_bar=0.3, hardness=pf.hardness.PowerLaw(sigma_1=1.0, n=0.2))
+    need = min_cells(pr, np.array([pr.V_max]))
+    assert need == 53
+    for tol in (1e-3, 1e-4, 1e-5):
+        for method in ("fv", "mol"):
+            assert _first_options(pr, method, tol)["n_p"] >= need

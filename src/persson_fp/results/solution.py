@@ -170,8 +170,11 @@ class Solution:
         stderr_load : array_like, pressure, optional
             Standard error of ``load``.
 
-        Returns and raises as :meth:`from_output`, which it calls with these fields gathered in one
-        :class:`~persson_fp.results.output.SolverOutput`.
+        Returns
+        -------
+        Solution
+            As :meth:`from_output` (which raises what it raises), called with these fields gathered in one
+            ``SolverOutput``.
         """
         out = SolverOutput(
             p=p,

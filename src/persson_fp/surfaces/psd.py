@@ -177,8 +177,20 @@ class PSD:
     def moment_unchecked(self, k: float, z) -> np.ndarray:
         r"""Spectral moment :math:`\int_{q_l}^{z q_l} q^k C(q)\,dq` at magnifications already checked.
 
-        The kernel behind :meth:`moment` for a solver's inner loop: ``z`` must be a float array (or float) in
-        ``[1, zeta_max]``; nothing is checked.  A subclass that writes only :meth:`moment` gets the checked one.
+        The kernel behind :meth:`moment` for a solver's inner loop: nothing is checked.  A subclass that writes
+        only :meth:`moment` gets the checked one.
+
+        Parameters
+        ----------
+        k : float
+            Power of q.
+        z : float or ndarray, dimensionless
+            Upper magnification(s), finite floats in ``[1, zeta_max]`` (the caller's responsibility).
+
+        Returns
+        -------
+        numpy.ndarray, length^(3-k)
+            The moment at each ``z``.
         """
         return self.moment(k, z)
 
@@ -187,9 +199,23 @@ class PSD:
         return self.zeta_max if zeta is None else check_in_range(zeta, "zeta", 1.0, self.zeta_max)
 
     def dV_dzeta_unchecked(self, z, E_star: float) -> np.ndarray:
-        """:meth:`dV_dzeta` at magnifications ``z`` already checked (a float array in [1, zeta_max]) and a checked
-        modulus ``E_star``: the kernel for a solver's inner loop, nothing validated (pressure^2).  Round-off beyond
-        the ends is clipped, as :meth:`dV_dzeta` clips it (C vanishes outside [q_l, q_s])."""
+        """:meth:`dV_dzeta` at magnifications already checked: the kernel for a solver's inner loop.
+
+        Nothing is validated; round-off beyond the ends is clipped, as :meth:`dV_dzeta` clips it (C vanishes
+        outside [q_l, q_s]).
+
+        Parameters
+        ----------
+        z : float or ndarray, dimensionless
+            Magnification(s), finite floats in ``[1, zeta_max]`` (the caller's responsibility).
+        E_star : float, pressure
+            Effective modulus, a finite float > 0 (the caller's responsibility).
+
+        Returns
+        -------
+        numpy.ndarray, pressure^2
+            dV/dzeta at each ``z``.
+        """
         q = np.clip(z, 1.0, self.zeta_max) * self.q_l
         return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(q)
 
@@ -279,8 +305,20 @@ class PSD:
         )
 
     def zeta_of_V_unchecked(self, V, E_star: float) -> np.ndarray:
-        """:meth:`zeta_of_V` at variances ``V`` already checked (a finite float array, pressure^2) and a checked
-        modulus ``E_star`` (a float > 0): the kernel for a solver's inner loop, nothing validated."""
+        """:meth:`zeta_of_V` at variances already checked: the kernel for a solver's inner loop, nothing validated.
+
+        Parameters
+        ----------
+        V : ndarray, pressure^2
+            Complete-contact pressure variance(s), finite floats (the caller's responsibility).
+        E_star : float, pressure
+            Effective modulus, a finite float > 0 (the caller's responsibility).
+
+        Returns
+        -------
+        numpy.ndarray, dimensionless
+            zeta with V(zeta) = ``V``: 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
+        """
         E_star = np.float64(E_star)
         M_max = float(self.moment_unchecked(3, self.zeta_max))
         with np.errstate(over="ignore"):
@@ -497,7 +535,20 @@ class SelfAffinePSD(PSD):
         return self.moment_unchecked(k, self._zeta(zeta))
 
     def moment_unchecked(self, k: float, z) -> np.ndarray:
-        """:meth:`moment` at magnifications already checked (a float array in [1, zeta_max]): nothing validated."""
+        """:meth:`moment` at magnifications already checked: the closed form, nothing validated.
+
+        Parameters
+        ----------
+        k : float
+            Power of q.
+        z : float or ndarray, dimensionless
+            Upper magnification(s), finite floats in ``[1, zeta_max]`` (the caller's responsibility).
+
+        Returns
+        -------
+        numpy.ndarray, length^(3-k)
+            The moment at each ``z``.
+        """
         z = np.asarray(z, dtype=float)
         q_hi = z * self.q_l
         q_mid = np.minimum(q_hi, self.q_r)
