@@ -13,10 +13,10 @@ load) is integrated alongside the march and handed to the invariant check as ``i
 from __future__ import annotations
 
 import time
-import warnings
 
 import numpy as np
 
+from persson_fp._warn import warn_user
 from persson_fp.results.solution import SolverError
 from persson_fp.solvers.front_fixed.moving_wall import MovingWall, check_resolved, domain_end
 
@@ -150,7 +150,7 @@ def finish(problem, n: int, fine: dict, coarse: dict, what: str, tol, info_extra
             "n_steps, or ask for an accuracy with tol="
         )
         info_extra = {**info_extra, "warnings": [msg]}
-        warnings.warn(f"{name}: {msg}", RuntimeWarning, stacklevel=6)  # (the caller of pf.solve)
+        warn_user(f"{name}: {msg}", RuntimeWarning)
     s = fine["s"]
     p = s[:, None] * (np.arange(n) + 0.5)[None, :] / n
     info = {
