@@ -30,6 +30,7 @@ def _scale_first_area(src, dst, factor):
         w.writerows(rows)
 
 
+@pytest.mark.slow
 def test_deterministic_and_sensitive(fingerprint, tmp_path, capsys):
     a, b = tmp_path / "a.csv", tmp_path / "b.csv"
     assert fingerprint.main(["--only", "batch-sines", "--output", str(a)]) == 0

@@ -16,6 +16,10 @@ import persson_fp as pf
 from persson_fp.solvers import EXTRAS, METHODS, SHARED_KNOBS, get_solver
 
 ALL = list(METHODS)
+HEAVY = {"fipy"}
+"""Methods whose accuracy and batch checks take seconds here (FiPy's Python loop): in the heavy group (``-m slow``,
+which CI runs too); backends/test_fipy.py checks its promise in the default run."""
+ALL_HEAVY_SLOW = [pytest.param(m, marks=pytest.mark.slow) if m in HEAVY else m for m in METHODS]
 
 OPTIONS = {  # cheap options of each method ({}: its defaults)
     "fv": {},
@@ -140,7 +144,7 @@ def test_option_validation(method):
         pf.solve(pr, method=method, zeta_out=[50.0, 20.0])
 
 
-@pytest.mark.parametrize("method", ALL)
+@pytest.mark.parametrize("method", ALL_HEAVY_SLOW)
 @pytest.mark.parametrize("fudge", [None, "YP08"])
 def test_defaults_meet_promised_accuracy(method, fudge):
     """Every method reaches its promised accuracy on the reference problem with its defaults (the backends and Monte
@@ -166,7 +170,7 @@ def test_defaults_meet_promised_accuracy(method, fudge):
     assert np.all(np.diff(sol.contact_area) <= 1e-12)
 
 
-@pytest.mark.parametrize("method", ALL)
+@pytest.mark.parametrize("method", ALL_HEAVY_SLOW)
 def test_batched_loads_equal_single_loads(method):
     options = _entry(OPTIONS, method)
     extra, tol_single, tol_exact = _entry(BATCH, method)
