@@ -216,6 +216,9 @@ class PSD:
         numpy.ndarray, pressure^2
             dV/dzeta at each ``z``.
         """
+        if type(z) is float:  # one magnification (a coefficient B2(p, zeta) asks at every step): no array round trip
+            q = np.float64(min(max(z, 1.0), self.zeta_max) * self.q_l)
+            return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(float(q))
         q = np.clip(z, 1.0, self.zeta_max) * self.q_l
         return 0.5 * np.pi * E_star**2 * self.q_l * q**3 * self.C(q)
 
