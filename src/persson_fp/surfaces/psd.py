@@ -538,20 +538,7 @@ class SelfAffinePSD(PSD):
         return self.moment_unchecked(k, self._zeta(zeta))
 
     def moment_unchecked(self, k: float, z) -> np.ndarray:
-        """:meth:`moment` at magnifications already checked: the closed form, nothing validated.
-
-        Parameters
-        ----------
-        k : float
-            Power of q.
-        z : float or ndarray, dimensionless
-            Upper magnification(s), finite floats in ``[1, zeta_max]`` (the caller's responsibility).
-
-        Returns
-        -------
-        numpy.ndarray, length^(3-k)
-            The moment at each ``z``.
-        """
+        # (documented on PSD.moment_unchecked: z finite in [1, zeta_max], nothing validated)
         z = np.asarray(z, dtype=float)
         q_hi = z * self.q_l
         q_mid = np.minimum(q_hi, self.q_r)

@@ -212,20 +212,7 @@ class TabulatedPSD(PSD):
         return self.moment_unchecked(k, self._zeta(zeta))
 
     def moment_unchecked(self, k: float, z) -> np.ndarray:
-        """:meth:`moment` at magnifications already checked: exact for the log-log interpolant, nothing validated.
-
-        Parameters
-        ----------
-        k : float
-            Power of q.
-        z : float or ndarray, dimensionless
-            Upper magnification(s), finite floats in ``[1, zeta_max]`` (the caller's responsibility).
-
-        Returns
-        -------
-        numpy.ndarray, length^(3-k)
-            The moment at each ``z``.
-        """
+        # (documented on PSD.moment_unchecked: z finite in [1, zeta_max], nothing validated)
         z = np.asarray(z, dtype=float)
         q_hi = z * self.q_l
         nodes, seg, cum = self._band(k)  # q_l, the table points strictly inside, q_s
