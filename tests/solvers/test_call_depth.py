@@ -2,7 +2,10 @@
 
 Measured with ``sys.setprofile``: the number of persson_fp frames on the stack at the deepest point of three whole
 ``pf.solve`` calls (the validating public API is not called from inner loops, engines do not call back into their
-solvers), and the depth at which the numerical kernels (the step, the right-hand side, the propagator) run.
+solvers), and the depth at which the numerical kernels (the step, the right-hand side, the propagator) run.  The
+limit holds for these three solves, on warm caches (a first call's one-off set-up apart); other paths go deeper
+today (fv on general coefficients 16, chebyshev's moving wall 15: the front-fixed step's damped start and the
+moving wall's clock), which the walls-as-objects step is to flatten.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """The invariants every numerical solution of Persson's diffusion problem keeps, and the errors a breach raises.
 
-:func:`check_invariants` is called once per :class:`~persson_fp.Solution` (in ``Solution.build``): finite
+:func:`check_invariants` is called once per :class:`~persson_fp.Solution` (in ``Solution.from_output``): finite
 values, A* in [0, 1] and non-increasing (the Xu et al. tutorial, Eq. 'eq:Area'), the load balance
 (Eq. 'eq:Load_equilibrium'; with a hardness the plastic load counts) and P0 >= 0, each against a tolerance tied
 to the method's own accuracy.  A breach raises :class:`~persson_fp.SolverError` naming the invariant and the remedy.
@@ -66,7 +66,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
         True: a breached invariant raises :class:`~persson_fp.SolverError` naming it and the remedy; False: a
         ``RuntimeWarning`` with the same text (and ``info["warnings"]``).
     extrema : tuple of float, optional
-        ``(min P0, max P0)`` over every element, where the caller has them (``Solution.build`` takes them for its
+        ``(min P0, max P0)`` over every element, where the caller has them (``Solution.from_output`` takes them for its
         finiteness check); default computed here.
 
     Returns

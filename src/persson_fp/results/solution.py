@@ -43,9 +43,9 @@ def _station_axis(a):
 class Solution:
     """What a solver returns: P0 at the output stations, the derived integrals and what the solver did.
 
-    Built by :meth:`build` (which checks the invariants, :func:`~persson_fp.results.solution.check_invariants`) from
-    :func:`persson_fp.solve`; a frozen dataclass.  The ``*_all`` arrays keep the load axis, their
-    counterparts without the suffix drop it for a scalar load.
+    Built by :meth:`from_output` (which checks the invariants, :func:`~persson_fp.results.solution.check_invariants`)
+    from what a method of :func:`persson_fp.solve` hands back; a frozen dataclass.  The ``*_all`` arrays keep the load
+    axis, their counterparts without the suffix drop it for a scalar load.
 
     Attributes
     ----------

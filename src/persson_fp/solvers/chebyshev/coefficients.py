@@ -163,7 +163,7 @@ class Coefficients:
         pr = self.problem
         f = pr.B2_fun
         if f is None:
-            return lambda z: float(pr.dV_dzeta(z))
+            return lambda z: float(pr.psd.dV_dzeta_unchecked(z, pr.E_star))  # (quadrature nodes inside [1, zeta_max])
 
         def b2(z):
             try:
@@ -181,7 +181,7 @@ class Coefficients:
     def zeta_of(self, V: float) -> float:
         """The magnification where the variance is V."""
         pr = self.problem
-        return float(np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))[0])
+        return float(np.atleast_1d(pr.psd.zeta_of_V_unchecked(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))[0])
 
     def at(self, p, V=None):
         """(b, c or None) per unit V at pressures ``p`` (any shape) and variance ``V`` (ignored if separable).
@@ -192,7 +192,8 @@ class Coefficients:
             dV/dzeta vanishes at zeta(V) (V is no clock there: use method 'fv' or 'mol').
         """
         z = self.z_ref if (self.separable or V is None) else self.zeta_of(V)
-        if not float(self.problem.dV_dzeta(z)) > 0:
+        pr = self.problem
+        if not float(pr.psd.dV_dzeta_unchecked(z, pr.E_star)) > 0:  # (z: zeta_max or the clipped inverse)
             raise ValueError(
                 f"method 'chebyshev' marches in V and needs dV/dzeta > 0, which vanishes at zeta = {z:.6g}; "
                 "use method='fv' or 'mol'"

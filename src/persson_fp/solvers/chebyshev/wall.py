@@ -103,14 +103,14 @@ class _Wall:
 
     def _beta(self, z):
         pr = self.problem
-        return 2.0 * pr.hardness.sigma(z) * pr.hardness.dsigma_dzeta(z) / pr.dV_dzeta(z)
+        return 2.0 * pr.hardness.sigma(z) * pr.hardness.dsigma_dzeta(z) / pr.psd.dV_dzeta_unchecked(z, pr.E_star)
 
     def __call__(self, V: float):
         hit = self._cache.get(V)
         if hit is None:
             pr = self.problem
-            z = np.atleast_1d(pr.psd.zeta_of_V(np.array([float(V)]), pr.E_star))
-            dV = float(pr.dV_dzeta(z)[0])
+            z = np.atleast_1d(pr.psd.zeta_of_V_unchecked(np.array([float(V)]), pr.E_star))
+            dV = float(pr.psd.dV_dzeta_unchecked(z, pr.E_star)[0])
             if not dV > 0:
                 raise ValueError(
                     f"method 'chebyshev': dV/dzeta vanishes at zeta = {float(z[0]):.6g} (V is no clock there for "

@@ -83,8 +83,8 @@ def _start_V(pr, zeta0):
 
 def finish(problem, n: int, fine: dict, coarse: dict, what: str, tol, info_extra: dict, name: str) -> dict:
     """Checks and error estimate of a paired run of the engine, and what the method hands on: a dict with the fields
-    of :class:`~persson_fp.results.SolverOutput` (p, P0, weights, kind, info and the areas); ``name`` (the method's)
-    heads a warning."""
+    of ``SolverOutput`` (``persson_fp.results.output``: p, P0, weights, kind, info and the areas); ``name`` (the
+    method's) heads a warning."""
     pr = problem
     est = richardson(fine, coarse, order=1.0)  # conservative: exact for first order, 3x over at second
     Wf, Wc = fine["W"], coarse["W"]

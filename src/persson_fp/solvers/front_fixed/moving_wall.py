@@ -39,6 +39,7 @@ import numpy as np
 
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.solution import SolverError
+from persson_fp.solvers.base import StationRecorder
 from persson_fp.solvers.front_fixed import fluxes
 from persson_fp.solvers.front_fixed.domain import coefficient_domain
 from persson_fp.solvers.schemes import TRBDF2_GAMMA, graded
@@ -140,8 +141,8 @@ class MovingWall:
             return hit
         pr = self.problem
         s, sV = self.wall(V)
-        z = float(self.zeta(V)[0])
-        dVdz = float(pr.dV_dzeta(z))
+        z = float(self.zeta(V)[0])  # (from the spectrum's inverse: in [1, zeta_max])
+        dVdz = float(pr.psd.dV_dzeta_unchecked(z, pr.E_star))
         B1f, B2f = pr.coefficients(s * self.x_faces, z)
         B1c, B2c = pr.coefficients(s * self.x, z)
         b1f, b2f, b2c = B1f / dVdz, B2f / dVdz, B2c / dVdz
@@ -279,18 +280,12 @@ class MovingWall:
             y, A_non0, A_pl0 = np.array(y0, dtype=float), np.zeros(m), np.asarray(y0, dtype=float)[:, -1]
         V_nodes, st_idx = self.nodes(V0, np.asarray(V_st, dtype=float), n_steps)
         self.prefill(V_nodes)
-        n_st = len(V_st)
-        W = np.empty((n_st, m, self.n))
-        A_pl = np.empty((n_st, m))
-        A_non = np.empty((n_st, m))
-        s_st = np.empty(n_st)
+        rec = StationRecorder(st_idx, W=(m, self.n), A_pl=(m,), A_non=(m,), s=(), drift=(m,))
         absorbed = np.zeros(m)
         drift = np.zeros(m)  # int b1 P dp dV since V0 (the first-moment law, info["load_law"])
-        drift_st = np.empty((n_st, m))
         load0 = self.load(V0, y)
         rate = self.drift_rate(V0, y)
         peclet = 0.0
-        k_st = 0
         for k in range(V_nodes.size - 1):
             Va, Vb = V_nodes[k], V_nodes[k + 1]
             dV = Vb - Va
@@ -316,13 +311,9 @@ class MovingWall:
                 raise SolverError(f"moving wall: non-finite values at V = {Vb:.6g}; raise n_steps")
             if self.deadline is not None and k % 16 == 15:
                 self.check_deadline(Vb)
-            while k_st < n_st and k + 1 == st_idx[k_st]:
-                W[k_st] = y[:, :-1]
-                A_pl[k_st] = y[:, -1]
-                A_non[k_st] = A_non0 + absorbed
-                s_st[k_st] = self.wall(Vb)[0]
-                drift_st[k_st] = drift
-                k_st += 1
+            if k + 1 in rec:
+                rec.record(k + 1, W=y[:, :-1], A_pl=y[:, -1], A_non=A_non0 + absorbed, s=self.wall(Vb)[0], drift=drift)
+        W, A_pl, A_non, s_st, drift_st = rec["W"], rec["A_pl"], rec["A_non"], rec["s"], rec["drift"]
         A_el = W.sum(axis=-1) * h
         F_el = s_st[:, None] * (W @ self.x) * h
         return {

@@ -2,9 +2,9 @@ r"""The finite-volume operators of the ``"fv"`` solver on a uniform cell grid wi
 
 Readable flux form (:func:`rhs`), its tridiagonal matrix (:func:`banded_operator`, :func:`apply_operator`), the
 compact 4th-order mass matrix (:func:`apply_mass`, ``SPACES``), the batched tridiagonal solver (``_Tridiag``)
-and the TR-BDF2 constants, and the scheme table (``SCHEMES``: θ, order, L-stability and default coupling of each
-θ-scheme; ``COUPLINGS``, ``LINALGS``).  The scheme is described in :mod:`persson_fp.solvers.fv`; the spectral fast
-path that diagonalises these operators exactly is in :mod:`persson_fp.solvers.fv.spectral` and ``fv_dst``.
+and the option values ``COUPLINGS``, ``LINALGS`` (the schemes themselves are data in ``solvers/schemes.py``).  The
+scheme is described in ``fv/solver.py``; the spectral fast path that diagonalises these operators exactly is in
+``fv/spectral.py`` and ``fv/dst.py``.
 """
 
 from __future__ import annotations

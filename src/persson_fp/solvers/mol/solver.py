@@ -376,7 +376,7 @@ class MethodOfLinesSolver(Solver):
                 raise ValueError("a moving yield wall needs a stiff integrator: 'BDF', 'Radau' or 'LSODA'")
             n = 200 if o["n_p"] is None else o["n_p"]
             self.check_memory(n)  # (Solver.__init__ skips it while n_p is None, the automatic grid)
-            atol = o["atol"]  # None: rtol x 1e-3 of each load's mass at the start (solve_lines_cells)
+            atol = o["atol"]  # None: rtol x 1e-3 of each load's mass at the start (solve_lines)
             frac = 0.05 if o["tau0_fraction"] is None else o["tau0_fraction"]
             return self._solve_on_engine(n, o["rtol"], atol, o["integrator"], frac)
         if pr.n_loads > _LOADS_PER_CHUNK and o["variable"] == "tau":
