@@ -163,12 +163,15 @@ def test_fourth_order_in_V_where_beta_is_constant():
     from persson_fp.solvers.chebyshev import wall as cw
 
     solver = ChebyshevSolver(scene_b(), tol=1e-6)
-    solver._deadline = None
-    V = float(solver.V_out[-1])
+    V_out = solver.V_out
+    V = float(V_out[-1])
     wall = cw._Wall(solver.problem)
+    no_budget = (None, np.inf)  # (deadline, max_time)
     with blas_threads(1):  # (as pf.solve runs it: small dense exponentials)
         a = {
-            N: cw._run(solver, wall, 24, 1e-3, 1e-6, [list(np.geomspace(1e-3 * V, V, N + 1))])["A_pl"][0, 0]
+            N: cw._run(
+                solver.problem, V_out, wall, 24, 1e-3, 1e-6, no_budget, [list(np.geomspace(1e-3 * V, V, N + 1))]
+            )["A_pl"][0, 0]
             for N in (8, 16, 96)
         }
     order = np.log2(abs(a[8] - a[96]) / abs(a[16] - a[96]))

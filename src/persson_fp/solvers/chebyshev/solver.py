@@ -51,8 +51,10 @@ from scipy.special import ndtr
 
 from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
 from persson_fp.solvers.chebyshev import collocation
+from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.coefficients import Coefficients
 from persson_fp.solvers.chebyshev.magnus import magnus_march
+from persson_fp.solvers.chebyshev.wall import check_wall_problem, solve_moving_wall
 
 __all__ = ["ChebyshevSolver"]
 
@@ -106,9 +108,7 @@ class ChebyshevSolver(Solver):
                     f"k_domain must lie in [5, 100], got {o['k_domain']!r}: the far wall would absorb load"
                 )
         if pr.moving_wall:  # front-fixed, on the Magnus march (persson_fp.solvers.chebyshev.wall)
-            from persson_fp.solvers.chebyshev.wall import check_wall_problem
-
-            check_wall_problem(self)
+            check_wall_problem(pr, o)
             self.path = "moving-wall"
             return
         if pr.fudge.name != "none":
@@ -346,30 +346,16 @@ class ChebyshevSolver(Solver):
         ) from None
 
     def check_degree_memory(self, n: int) -> None:
-        """A ``ValueError`` if a run at degree ``n`` would exceed ``max_memory``: 160 (n + 1)^2 bytes a load + 1 MB
-        (tracemalloc peaks: 12-24 x 8 (n + 1)^2 a load, exponential path, n = 100-300; 9-14 x on the march)."""
-        need = 160.0 * (n + 1) ** 2 * self.problem.n_loads + 1e6
-        if need > self.max_memory:
-            raise ValueError(
-                f"chebyshev: a run at degree {n} with {self.problem.n_loads} load(s) would need about "
-                f"{need / 2**20:.3g} MiB of memory (estimate), more than max_memory = {self.max_memory / 2**20:.3g} "
-                "MiB; use fewer loads per call, a smaller n_p or a looser tol, or pass a larger max_memory (bytes)"
-            )
+        """A ``ValueError`` if a run at degree ``n`` would exceed ``max_memory`` (``budget.check_degree_memory``)."""
+        check_degree_memory(n, self.problem.n_loads, self.max_memory)
 
     def _out_of_time(self, where: str):
-        from persson_fp.results.invariants import SolverError
-
-        raise SolverError(
-            f"chebyshev: max_time = {self.max_time:.3g} s exceeded ({where}); loosen tol, or pass a larger max_time "
-            "(seconds)"
-        ) from None
+        out_of_time(self.max_time, where)
 
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
         if pr.moving_wall:
-            from persson_fp.solvers.chebyshev.wall import solve_moving_wall
-
-            return solve_moving_wall(self)
+            return solve_moving_wall(pr, o, self.zeta_out, self.V_out, self.max_time, self.max_memory)
         tol = o["tol"]
         doms = []
         for V in self.V_out:  # a far wall per station (a loop, not a comprehension: one frame less below it)

@@ -51,6 +51,7 @@ import numpy as np
 from persson_fp.results.invariants import SolverError
 from persson_fp.solvers.base import SolverOutput
 from persson_fp.solvers.chebyshev import collocation
+from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.magnus import magnus_march
 from persson_fp.theory.strip import strip_quantities
 
@@ -60,11 +61,12 @@ N_MAX_WALL = 160
 """Largest degree the adaptive loop reaches on the moving wall (each Magnus step takes 8 exponentials)."""
 
 
-def check_wall_problem(solver) -> None:
-    """``ValueError`` unless the moving wall is one this path solves: the homogenised problem, no fudge factor."""
-    pr = solver.problem
-    if solver.opts["march"] not in (None, "magnus"):
-        got = solver.opts["march"]
+def check_wall_problem(problem, opts) -> None:
+    """``ValueError`` unless the moving wall is one this path solves: the homogenised problem, no fudge factor
+    (``opts``: chebyshev's options)."""
+    pr = problem
+    if opts["march"] not in (None, "magnus"):
+        got = opts["march"]
         raise ValueError(f"march must be None or 'magnus' (a moving wall is always marched), got {got!r}")
     if pr.general:
         raise ValueError(
@@ -154,18 +156,18 @@ def _operator(grid, s: float, sV: float, dbeta: float):
     return M
 
 
-def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
-    """One run at degree n and start fraction ``frac`` (on the steps ``nodes[k]`` per station if given): a dict of
-    per-station arrays, the grids and the accepted steps."""
-    pr = solver.problem
+def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None):
+    """One run at degree n and start fraction ``frac`` to the stations ``V_out`` (on the steps ``nodes[k]`` per
+    station if given; ``budget`` = (deadline, max_time)): a dict of per-station arrays, the grids and the accepted
+    steps."""
     pb = pr.p_bar.astype(float)
-    n_st, nl = solver.V_out.size, pb.size
+    n_st, nl = V_out.size, pb.size
     shape = (n_st, nl)
     out = {key: np.zeros(shape) for key in ("A_el", "A_pl", "A_non", "F_el", "t_err", "unresolved", "beta", "roundoff")}
     out["W"], out["grids"], out["s"], out["nodes"] = np.zeros((n_st, nl, n + 1)), [], np.zeros(n_st), []
     stats = {"steps": 0, "rejected": 0, "expm": 0}
     floor = 4.0 * np.finfo(float).eps * n * n
-    for k, V in enumerate(solver.V_out):
+    for k, V in enumerate(V_out):
         V = float(V)
         V0 = frac * V
         s0 = wall(V0)[0]
@@ -201,13 +203,13 @@ def _run(solver, wall, n: int, frac: float, tol_t: float, nodes=None):
                 norm,
                 floor,
                 None,
-                solver._deadline,
+                budget[0],
                 nodes=None if nodes is None else nodes[k],
                 record=used,
                 refusal="pace",
             )
         except TimeoutError as err:
-            solver._out_of_time(f"moving wall: {err}")
+            out_of_time(budget[1], f"moving wall: {err}")
         except RuntimeError as err:
             raise SolverError(f"chebyshev (moving wall): {err}; loosen tol or use method='fv'") from None
         for key in stats:
@@ -242,33 +244,33 @@ def _compare(main, other, p_bar):
     return L1, d["A_el"], d["A_pl"], d["A_non"], np.abs(main["F_el"] - other["F_el"]) / p_bar
 
 
-def _wall_fraction(solver, tol: float) -> float:
+def _wall_fraction(pr, V_out, tol: float) -> float:
     """The largest V0 / V(zeta_max) at which the start, and its partner at 4 V0, are k widths sqrt(V0) below the
     wall with exp(-k^2 / 2) < 1e-3 tol at the partner (the image start knows nothing of the wall's motion and of the
     plastic area it has taken before V0)."""
-    pr = solver.problem
     gap = float(np.min(pr.sigma_Y(1.0) - pr.p_bar))  # the wall only moves out: sigma_Y(1) is its closest
     k = 2.0 * math.sqrt(2.0 * math.log(1e3 / tol))
-    return max((gap / k) ** 2 / float(np.max(solver.V_out)), 1e-12)
+    return max((gap / k) ** 2 / float(np.max(V_out)), 1e-12)
 
 
-def solve_moving_wall(solver) -> SolverOutput:
-    """Solve ``solver.problem`` (a moving wall, no fudge factor) to ``solver.opts["tol"]`` (module docstring)."""
-    o, pr = solver.opts, solver.problem
+def solve_moving_wall(problem, opts, zeta_out, V_out, max_time: float, max_memory: float) -> SolverOutput:
+    """Solve ``problem`` (a moving wall, no fudge factor) to ``opts["tol"]`` at the stations (zeta_out, V_out) within
+    ``max_time`` seconds and ``max_memory`` bytes (module docstring; ``opts``: chebyshev's options)."""
+    o, pr = opts, problem
     tol = o["tol"]
     wall = _Wall(pr)
-    frac = o["V0_fraction"] or min(float(np.clip(0.3 * math.sqrt(tol), 3e-5, 1e-2)), _wall_fraction(solver, tol))
+    frac = o["V0_fraction"] or min(float(np.clip(0.3 * math.sqrt(tol), 3e-5, 1e-2)), _wall_fraction(pr, V_out, tol))
     n = o["n_p"] or int(np.clip(8 + 8 * math.log10(1.0 / tol), 24, N_MAX_WALL))
     tol_t = tol / 4.0
-    solver._deadline = time.perf_counter() + solver.max_time
+    budget = (time.perf_counter() + max_time, max_time)  # (deadline, max_time)
     total = {"steps": 0, "rejected": 0, "expm": 0}
     runs = 0
     last_time = math.inf  # the march's part of the last estimate where it was tightened after it
     while True:
-        solver.check_degree_memory(n)
-        main = _run(solver, wall, n, frac, tol_t)
-        grid_part = _run(solver, wall, max(8, int(round(0.75 * n))), frac, tol_t, main["nodes"])
-        start_part = _run(solver, wall, n, 4.0 * frac, tol_t, main["nodes"])
+        check_degree_memory(n, pr.n_loads, max_memory)
+        main = _run(pr, V_out, wall, n, frac, tol_t, budget)
+        grid_part = _run(pr, V_out, wall, max(8, int(round(0.75 * n))), frac, tol_t, budget, main["nodes"])
+        start_part = _run(pr, V_out, wall, n, 4.0 * frac, tol_t, budget, main["nodes"])
         runs += 3
         for r in (main, grid_part, start_part):
             for key in total:
@@ -318,7 +320,7 @@ def solve_moving_wall(solver) -> SolverOutput:
             n = int(math.ceil(1.3 * n))
         if n > N_MAX_WALL:
             k = int(np.argmax(np.max(est["L1"], axis=1)))  # the station that fails
-            z_k, width = float(solver.zeta_out[k]), math.sqrt(float(solver.V_out[k])) / float(main["s"][k])
+            z_k, width = float(zeta_out[k]), math.sqrt(float(V_out[k])) / float(main["s"][k])
             hint = "loosen tol or use method='fv'"
             if width < 1e-2:  # (the PDF a tiny fraction of the domain wide: no degree resolves it)
                 hint = f"the PDF there is {width:.1e} of sigma_Y wide: start zeta_out later (or use method='fv')"
@@ -326,8 +328,8 @@ def solve_moving_wall(solver) -> SolverOutput:
                 f"chebyshev (moving wall): the error estimate {worst:.3e} exceeds tol = {tol:.3g} at degree "
                 f"{N_MAX_WALL} (worst at zeta = {z_k:.6g}); {hint}"
             )
-        if time.perf_counter() > solver._deadline:
-            solver._out_of_time(f"moving wall: {runs} runs done, degree {n}")
+        if time.perf_counter() > budget[0]:
+            out_of_time(max_time, f"moving wall: {runs} runs done, degree {n}")
     load = main["F_el"] + main["s"][:, None] * main["A_pl"]
     info = {
         "path": "moving-wall",
@@ -338,7 +340,7 @@ def solve_moving_wall(solver) -> SolverOutput:
             "mapping": "x = p / sigma_Y(zeta), Chebyshev points sinh-mapped around p_bar / sigma_Y(zeta0)",
         },
         "V0_fraction": frac,
-        "zeta0": solver.zeta_from_V(frac * solver.V_out),
+        "zeta0": np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(np.asarray(frac * V_out, dtype=float)), pr.E_star)),
         "runs": runs,
         "error_estimate": {
             **est,
