@@ -89,6 +89,31 @@ def test_call_depth(scene):
     assert got["kernel"] <= MAX_KERNEL_DEPTH, (got["kernel"], sorted(got["seen"]))
 
 
+MAX_RANGE_CHECKS = 20
+"""Calls of the range check behind the spectrum's validating methods (``check_in_range``) in one whole solve, at most:
+the call's own validation, never one per step (a moving-wall mol solve made 451 through ``check_zeta``)."""
+
+
+@pytest.mark.parametrize("scene", list(SCENES))
+def test_inner_loops_do_not_validate(scene):
+    from persson_fp import _validate
+
+    call = SCENES[scene]
+    call()
+    code, n = _validate.check_in_range.__code__, [0]
+
+    def profile(frame, event, arg):
+        if event == "call" and frame.f_code is code:
+            n[0] += 1
+
+    sys.setprofile(profile)
+    try:
+        call()
+    finally:
+        sys.setprofile(None)
+    assert 0 < n[0] <= MAX_RANGE_CHECKS, n[0]
+
+
 def test_measure_counts_frames():
     """The measurement itself: a chain of three package calls inside a lambda reads as their number."""
     from persson_fp._validate import check_in_range
