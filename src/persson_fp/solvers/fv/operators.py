@@ -149,18 +149,16 @@ class _Tridiag:
         return X.reshape(self.m, n)
 
 
-def march_result(P_out, A_out, Af_out, JN_out, JN, r_max, dtau_total, counters: dict) -> dict:
+def march_result(stations, JN, r_max, dtau_total, counters: dict) -> dict:
     """What a march of ``"fv"`` hands back (every path: banded, DST stepping, DST exact in tau).
 
-    ``P_out`` (n_st, m, n_p), ``A_out``/``Af_out``/``JN_out`` (n_st, m): P0, the mass and the flux-accumulated area at
-    each station and the plastic area gained; ``JN`` the last of these; ``r_max`` the largest diffusion number;
-    ``dtau_total`` (m,) the effective variance marched; ``counters`` the work done (reported in ``info``).
+    ``stations``: a :class:`~persson_fp.solvers.base.StationRecorder` (or a dict) of ``P_out`` (n_st, m, n_p) and
+    ``A_out``/``Af_out``/``JN_out`` (n_st, m): P0, the mass and the flux-accumulated area at each station and the
+    plastic area gained; ``JN`` the last of these; ``r_max`` the largest diffusion number; ``dtau_total`` (m,) the
+    effective variance marched; ``counters`` the work done (reported in ``info``).
     """
     return {
-        "P_out": P_out,
-        "A_out": A_out,
-        "Af_out": Af_out,
-        "JN_out": JN_out,
+        **{key: stations[key] for key in ("P_out", "A_out", "Af_out", "JN_out")},
         "JN": JN,
         "r_max": r_max,
         "dtau_total": dtau_total,

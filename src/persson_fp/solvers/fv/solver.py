@@ -420,10 +420,7 @@ class FiniteVolumeSolver(Solver):
                 Af = A0 - J0 + w_edge * dp * (P[:, 0] - P_edge0)
                 rec.record(n + 1, P_out=P, A_out=mass, Af_out=Af, JN_out=JN)
         return march_result(
-            rec["P_out"],
-            rec["A_out"],
-            rec["Af_out"],
-            rec["JN_out"],
+            rec,
             JN,
             r_max,
             dtau_total,

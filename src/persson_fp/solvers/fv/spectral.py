@@ -252,10 +252,7 @@ class DSTMarch:
         JN_out = contract(C0 * fun[:, 2], H[K])  # (n_st, m): the plastic area gained (with a hardness wall)
         JN = contract(C0 * fun[:, 2], H[-1:])[0]
         return march_result(
-            P_out,
-            A_out,
-            Af_out,
-            JN_out,
+            {"P_out": P_out, "A_out": A_out, "Af_out": Af_out, "JN_out": JN_out},
             JN,
             r_max,
             np.broadcast_to(dts.sum(axis=0), (m,)).copy(),
@@ -400,10 +397,7 @@ class DSTMarch:
                 Af = A0 - J0 + w_edge * dp * (Pst[:, 0] - P_edge0)
                 rec.record(n + 1, P_out=Pst, A_out=mass, Af_out=Af, JN_out=JN)
         return march_result(
-            rec["P_out"],
-            rec["A_out"],
-            rec["Af_out"],
-            rec["JN_out"],
+            rec,
             JN,
             r_max,
             dtau_total,
