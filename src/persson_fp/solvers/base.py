@@ -32,6 +32,7 @@ __all__ = [
     "Solver",
     "SolverOutput",
     "StationRecorder",
+    "zeta_of",
     "SHARED_KNOBS",
     "check_int",
     "check_float",
@@ -108,6 +109,13 @@ _IGNORED_RANGES = {
     "n_steps": lambda v, k: check_int(v, k, 1),
 }
 """The ranges of the shared knobs, checked even where a method ignores the knob (``atol=-1`` is wrong anywhere)."""
+
+
+def zeta_of(problem, V) -> np.ndarray:
+    """Magnifications where V(zeta) = ``V`` (pressure^2, finite: a solver's own values), as a 1-D array: 1 where
+    V <= 0, zeta_max beyond V(zeta_max).  The spectrum's closed-form inverse, unchecked
+    (:meth:`persson_fp.PSD.zeta_of_V_unchecked`)."""
+    return np.atleast_1d(problem.psd.zeta_of_V_unchecked(np.atleast_1d(np.asarray(V, dtype=float)), problem.E_star))
 
 
 class StationRecorder:
@@ -360,8 +368,7 @@ class Solver:
 
         The spectrum's closed-form inverse (:meth:`persson_fp.surfaces.psd.PSD.zeta_of_V`), vectorised.
         """
-        V = np.atleast_1d(np.asarray(V_target, dtype=float))
-        return np.atleast_1d(self.problem.psd.zeta_of_V(V, self.problem.E_star))
+        return zeta_of(self.problem, V_target)
 
     def start_zeta(self, zeta0=None, tau0_fraction=None, dp=None) -> float:
         """Start-up magnification zeta0 of an ``initial="exact"`` run.

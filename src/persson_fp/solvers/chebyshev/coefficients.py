@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from persson_fp.solvers.base import zeta_of
+
 __all__ = ["Coefficients"]
 
 
@@ -180,8 +182,7 @@ class Coefficients:
 
     def zeta_of(self, V: float) -> float:
         """The magnification where the variance is V."""
-        pr = self.problem
-        return float(np.atleast_1d(pr.psd.zeta_of_V_unchecked(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))[0])
+        return float(zeta_of(self.problem, V)[0])
 
     def at(self, p, V=None):
         """(b, c or None) per unit V at pressures ``p`` (any shape) and variance ``V`` (ignored if separable).

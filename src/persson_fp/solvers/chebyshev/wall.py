@@ -49,7 +49,7 @@ import time
 import numpy as np
 
 from persson_fp.results.invariants import SolverError
-from persson_fp.solvers.base import SolverOutput
+from persson_fp.solvers.base import SolverOutput, zeta_of
 from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.magnus import magnus_march
@@ -111,7 +111,7 @@ class _Wall:
         hit = self._cache.get(V)
         if hit is None:
             pr = self.problem
-            z = np.atleast_1d(pr.psd.zeta_of_V_unchecked(np.array([float(V)]), pr.E_star))
+            z = zeta_of(pr, float(V))
             dV = float(pr.psd.dV_dzeta_unchecked(z, pr.E_star)[0])
             if not dV > 0:
                 raise ValueError(
@@ -340,7 +340,7 @@ def solve_moving_wall(problem, opts, zeta_out, V_out, max_time: float, max_memor
             "mapping": "x = p / sigma_Y(zeta), Chebyshev points sinh-mapped around p_bar / sigma_Y(zeta0)",
         },
         "V0_fraction": frac,
-        "zeta0": np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(np.asarray(frac * V_out, dtype=float)), pr.E_star)),
+        "zeta0": zeta_of(pr, frac * V_out),
         "runs": runs,
         "error_estimate": {
             **est,

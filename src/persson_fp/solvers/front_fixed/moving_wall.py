@@ -39,7 +39,7 @@ import numpy as np
 
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.solution import SolverError
-from persson_fp.solvers.base import StationRecorder
+from persson_fp.solvers.base import StationRecorder, zeta_of
 from persson_fp.solvers.front_fixed import fluxes
 from persson_fp.solvers.front_fixed.domain import coefficient_domain
 from persson_fp.solvers.schemes import TRBDF2_GAMMA, graded
@@ -86,7 +86,7 @@ class MovingWall:
     # -- the wall along V --------------------------------------------------------------------------------
     def zeta(self, V):
         pr = self.problem
-        return np.atleast_1d(pr.psd.zeta_of_V_unchecked(np.atleast_1d(np.asarray(V, dtype=float)), pr.E_star))
+        return zeta_of(pr, V)
 
     def wall_many(self, V):
         """(s, s_V) arrays at complete-contact variances V: sigma_Y and d sigma_Y / dV (pressure, 1/pressure)."""
@@ -95,7 +95,7 @@ class MovingWall:
             V = np.atleast_1d(np.asarray(V, dtype=float))
             return np.full(V.shape, self.p_end), np.zeros(V.shape)
         V = np.atleast_1d(np.asarray(V, dtype=float))
-        z = np.atleast_1d(pr.psd.zeta_of_V_unchecked(V, pr.E_star))  # (clipped to [1, zeta_max] by the inverse)
+        z = np.atleast_1d(pr.psd.zeta_of_V_unchecked(V, pr.E_star))  # (zeta_of's kernel, one call less: every step)
         s = pr.hardness.sigma(z)
         dV = pr.psd.dV_dzeta_unchecked(z, pr.E_star)
         sV = np.where(dV > 0, pr.hardness.dsigma_dzeta(z) / np.where(dV > 0, dV, 1.0), 0.0)

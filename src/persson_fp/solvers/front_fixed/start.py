@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from persson_fp.solvers.base import zeta_of
 from persson_fp.solvers.front_fixed.moving_wall import MovingWall, check_resolved, domain_end
 
 __all__ = [
@@ -172,7 +173,7 @@ def general_start(problem, stations, n: int, zeta0, k_domain: float, tau0_fracti
     else:
         V_own = mw.choose_V0(float(V_st[0]), tau0_fraction)
         V0 = clear_start_V(mw, V_own)
-        out = None if V0 == V_own else float(np.atleast_1d(pr.psd.zeta_of_V(np.atleast_1d(V0), pr.E_star))[0])
+        out = None if V0 == V_own else float(zeta_of(pr, V0)[0])
     if V0 > 0.0:
         check_wall_peclet(mw, V0, name)
     return out

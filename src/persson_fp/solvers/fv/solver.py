@@ -83,7 +83,7 @@ from __future__ import annotations
 import numpy as np
 
 from persson_fp.results.solution import InstabilityError
-from persson_fp.solvers.base import Solver, SolverOutput, StationRecorder, check_float, check_int
+from persson_fp.solvers.base import Solver, SolverOutput, StationRecorder, check_float, check_int, zeta_of
 from persson_fp.solvers.front_fixed.estimate import finish, run_pair
 from persson_fp.solvers.front_fixed.start import general_start, singular_step_error
 from persson_fp.solvers.fv.dst import dst_eigenvalues  # noqa: F401
@@ -101,7 +101,7 @@ from persson_fp.solvers.fv.operators import (  # noqa: F401  (re-exported: the o
     wall_flux,
 )
 from persson_fp.solvers.fv.spectral import DSTMarch
-from persson_fp.solvers.fv.stepping import STEPPINGS, step_kind, step_nodes, zeta_of_V
+from persson_fp.solvers.fv.stepping import STEPPINGS, step_kind, step_nodes
 from persson_fp.solvers.schemes import SCHEMES, TRBDF2_A, TRBDF2_B, TRBDF2_GAMMA, TRBDF2_W
 from persson_fp.theory.fudge import NoFudge
 from persson_fp.theory.image import tail_mass
@@ -406,11 +406,11 @@ class FiniteVolumeSolver(Solver):
                 try:
                     self.check_state(P, cons, mass_prev, np.nan, "fv/" + o["scheme"], remedy)
                 except InstabilityError:  # say where (the root find costs only when it fails)
-                    z_now = zeta_of_V(pr, float(V_nodes[n + 1, 0]))
+                    z_now = float(zeta_of(pr, float(V_nodes[n + 1, 0]))[0])
                     self.check_state(P, cons, mass_prev, z_now, "fv/" + o["scheme"], remedy)
                 sup = np.max(np.abs(P), axis=-1)
                 if np.any(sup > 2.0 * sup0 + 1e-300):
-                    z_now = zeta_of_V(pr, float(V_nodes[n + 1, 0]))
+                    z_now = float(zeta_of(pr, float(V_nodes[n + 1, 0]))[0])
                     raise InstabilityError(
                         f"fv/{o['scheme']}: max |P0| grew by a factor {np.max(sup / sup0):.3g} by zeta = "
                         f"{z_now:.6g} (the heat equation cannot do that; r = {r_max:.3g}); {remedy}"

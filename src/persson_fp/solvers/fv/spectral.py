@@ -50,10 +50,10 @@ from __future__ import annotations
 import numpy as np
 
 from persson_fp.results.solution import DEFAULT_TOLERANCES, InstabilityError
-from persson_fp.solvers.base import Solver, StationRecorder
+from persson_fp.solvers.base import Solver, StationRecorder, zeta_of
 from persson_fp.solvers.fv.dst import _amplification, _growth, _Spectral, dst_eigenvalues
 from persson_fp.solvers.fv.operators import march_result
-from persson_fp.solvers.fv.stepping import damped_steps, step_kind, zeta_of_V
+from persson_fp.solvers.fv.stepping import damped_steps, step_kind
 from persson_fp.theory.fudge import NoFudge
 
 __all__ = ["dst_eigenvalues", "DSTMarch"]
@@ -104,11 +104,12 @@ class DSTMarch:
         try:
             Solver.check_state(C, mass, mass_prev, np.nan, name, remedy)
         except InstabilityError:  # say where (the root find costs only when it fails)
-            Solver.check_state(C, mass, mass_prev, zeta_of_V(self.problem, V_now), name, remedy)
+            Solver.check_state(C, mass, mass_prev, float(zeta_of(self.problem, V_now)[0]), name, remedy)
         if np.any(norm > 2.0 * norm0 + 1e-300):
+            z_now = float(zeta_of(self.problem, V_now)[0])
             raise InstabilityError(
                 f"{name}: the l2 norm of P0 grew by a factor {np.max(norm / norm0):.3g} by zeta = "
-                f"{zeta_of_V(self.problem, V_now):.6g} (the heat equation cannot do that; r = {r_max:.3g}); {remedy}"
+                f"{z_now:.6g} (the heat equation cannot do that; r = {r_max:.3g}); {remedy}"
             )
 
     def _amplify_all(self, X, theta):

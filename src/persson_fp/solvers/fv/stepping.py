@@ -14,7 +14,7 @@ import numpy as np
 from persson_fp.solvers.schemes import GRADE, graded
 from persson_fp.theory.fudge import NoFudge
 
-__all__ = ["STEPPINGS", "step_nodes", "zeta_of_V", "damped_steps", "step_kind"]
+__all__ = ["STEPPINGS", "step_nodes", "damped_steps", "step_kind"]
 
 STEPPINGS = ("geometric", "zeta", "tau", "graded")
 
@@ -33,11 +33,6 @@ def step_kind(opts, n: int) -> str:
     if n < damped_steps(opts):
         return "be-halves"
     return "tr-bdf2" if opts["scheme"] == "tr-bdf2" else "theta"
-
-
-def zeta_of_V(problem, V) -> float:
-    """Magnification where V(zeta) = V (1 for V <= 0)."""
-    return float(np.atleast_1d(problem.psd.zeta_of_V(np.atleast_1d(np.asarray(V, dtype=float)), problem.E_star))[0])
 
 
 def step_nodes(problem, opts, zeta0: float, V0: float, zeta_out, V_out):
