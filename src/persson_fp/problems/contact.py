@@ -11,15 +11,12 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.special import erf
 
 from persson_fp._validate import as_float_array, as_positive_scalar
+from persson_fp.problems import walls as _walls
 from persson_fp.problems.loads import _check_loads, _warn_unit_slip
 from persson_fp.surfaces.psd import PSD, SelfAffinePSD
 from persson_fp.theory import fudge as _fudge
-from persson_fp.theory import hardness as _hardness
-from persson_fp.theory.effective import effective_variance
-from persson_fp.theory.strip import StripEffectiveVariance
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -95,10 +92,12 @@ class ContactProblem:
         self.p_bar = np.atleast_1d(pb).astype(float)
         self.p_bar.setflags(write=False)
         self.fudge = _fudge.resolve(fudge)
-        self.hardness = _hardness.resolve(hardness)
-        if self.hardness is not None:
-            self.hardness.check(self.psd.zeta_max, float(np.max(self.p_bar)))
-        self._strip_ev = None  # StripEffectiveVariance, on first use (constant hardness with a fudge factor)
+        self.upper_wall = _walls.upper_wall(hardness)
+        self.walls = (_walls.AbsorbingWall(), self.upper_wall)
+        """The walls of the pressure domain, low to high (:mod:`persson_fp.problems.walls`)."""
+        self.hardness = self.upper_wall.hardness
+        self.upper_wall.check(self.psd.zeta_max, float(np.max(self.p_bar)))
+        self._tau_map = None  # the fudge factor's effective-variance map (the upper wall's), on first use
         with np.errstate(over="ignore", under="ignore"):
             self._V_max = float(self.psd.V(None, self.E_star))
         if not (np.isfinite(self._V_max) and self._V_max > 0):  # V = E*^2 <|grad h|^2> / 4 out of range
@@ -183,19 +182,16 @@ class ContactProblem:
             hardness sigma_Y at zeta = 1.
         """
         pb = _check_loads(p_bar)
-        if self.hardness is not None:
-            self.hardness.check(self.psd.zeta_max, float(np.max(pb)))
-        state = dict(self.__dict__, scalar_load=pb.ndim == 0, _strip_ev=None, _tau_max=None, _p_max=None)
+        self.upper_wall.check(self.psd.zeta_max, float(np.max(pb)))
+        state = dict(self.__dict__, scalar_load=pb.ndim == 0, _tau_map=None, _tau_max=None, _p_max=None)
         state["p_bar"] = np.atleast_1d(pb).astype(float)
         new = object.__new__(type(self))
         new.__setstate__(state)  # freezes p_bar
-        if self._strip_ev is not None and np.array_equal(new.p_bar, self.p_bar):  # same loads: reuse the tau map
-            object.__setattr__(new, "_strip_ev", self._strip_ev)
         return new
 
     def __repr__(self):
         loads = f"{self.p_bar[0]:.6g}" if self.scalar_load else f"<{self.p_bar.size} loads>"
-        hard = "" if self.hardness is None else f", hardness={self.hardness!r}"
+        hard = self.upper_wall.repr_part()
         return f"ContactProblem({self.psd!r}, E_star={self.E_star:.6g}, p_bar={loads}, fudge={self.fudge.name!r}{hard})"
 
     # -- coefficients ---------------------------------------------------------------
@@ -324,12 +320,7 @@ class ContactProblem:
             raise ValueError("V must be >= 0 (a complete-contact pressure variance), got a negative value or NaN")
         if isinstance(self.fudge, _fudge.NoFudge):
             return np.array(V)
-        if self.hardness is not None:
-            return self._strip_effective().tau(V)
-        if isinstance(self.fudge, _fudge.Xu24):
-            A = self.fudge.area(self.p_bar, V)
-            return self.fudge.g(A) * V
-        return effective_variance(self.fudge).tau(self.p_bar, V)
+        return self._effective().tau(V)
 
     def V_of_tau_each(self, tau: ArrayLike) -> np.ndarray:
         """The inverse of :meth:`tau_of_V_each`: the complete-contact variance at one effective variance per load.
@@ -358,13 +349,7 @@ class ContactProblem:
             raise ValueError("tau must be >= 0 (an effective pressure variance), got a negative value or NaN")
         if isinstance(self.fudge, _fudge.NoFudge):
             return np.array(tau)
-        if self.hardness is not None:
-            return self._strip_effective().V_of_tau(tau)
-        if isinstance(self.fudge, _fudge.Xu24):
-            with np.errstate(divide="ignore"):
-                A = erf(np.divide(self.p_bar, np.sqrt(2.0 * tau), out=np.full(tau.shape, np.inf), where=tau > 0))
-            return tau / self.fudge.g(A)
-        return effective_variance(self.fudge).V_of_tau(self.p_bar, tau)
+        return self._effective().V_of_tau(tau)
 
     @property
     def general(self) -> bool:
@@ -372,14 +357,20 @@ class ContactProblem:
         return False
 
     @property
+    def features(self) -> frozenset:
+        """What a method must support to solve this problem (matched against each method's ``SUPPORTS``):
+        the walls' features ("hardness", "moving_wall") and "general" for general coefficients."""
+        return frozenset(w.feature for w in self.walls) - {None}
+
+    @property
     def has_closed_form(self) -> bool:
         """Whether :func:`persson_fp.exact` solves this problem (no moving wall, no general coefficients)."""
-        return not (self.moving_wall or self.general)
+        return not (self.features & {"moving_wall", "general"})
 
     @property
     def moving_wall(self) -> bool:
         """True for a scale-dependent hardness (a yield wall that moves with zeta: no closed form)."""
-        return self.hardness is not None and not self.hardness.is_constant
+        return self.upper_wall.moves
 
     def sigma_Y(self, zeta=None) -> np.ndarray:
         """Hardness sigma_Y at magnification(s) ``zeta``.
@@ -395,21 +386,14 @@ class ContactProblem:
             sigma_Y (pressure), the shape of ``zeta``; inf without a hardness.
         """
         z = self.zeta_max if zeta is None else zeta
-        if self.hardness is None:
-            return np.full(np.shape(z), np.inf)
-        return self.hardness.sigma(z)
+        return self.upper_wall.sigma(z)
 
-    def _strip_effective(self) -> StripEffectiveVariance:
-        """The effective-variance map of a fudge factor with a hardness wall, solved once per problem."""
-        if self.moving_wall:
-            raise ValueError(
-                "a scale-dependent hardness with a fudge factor has no closed-form effective variance: the "
-                "area that S depends on comes from the numerical solution (pf.solve(problem, method='fv'))"
-            )
-        if self._strip_ev is None:
-            ev = StripEffectiveVariance(self.fudge.S, self.p_bar, float(self.hardness.sigma(1.0)), self._V_max)
-            object.__setattr__(self, "_strip_ev", ev)
-        return self._strip_ev
+    def _effective(self):
+        """The effective-variance map of the fudge factor (the upper wall's: the strip's with a hardness), built
+        once per problem."""
+        if self._tau_map is None:
+            object.__setattr__(self, "_tau_map", self.upper_wall.tau_map(self))
+        return self._tau_map
 
     def tau(self, zeta: ArrayLike | None = None) -> np.ndarray:
         """Effective variance tau(zeta) = int_1^zeta S(A*) dV (Xu et al. tutorial, Eq. 'eq:new_B2').
@@ -485,9 +469,6 @@ class ContactProblem:
         if cache is not None and cache[0] == k and type(k) is float:  # the last k asked (solvers ask one k)
             return cache[1]
         k = as_positive_scalar(k, "k")
-        if self.hardness is not None and self.hardness.is_constant:
-            value = float(self.hardness.sigma(1.0))  # the strip: the yield wall is the domain's end
-        else:
-            value = float(np.max(self.p_bar + k * np.sqrt(self.tau_max)))
+        value = self.upper_wall.p_max(self, k)
         object.__setattr__(self, "_p_max", (k, value))  # (a cache of an immutable value; with_loads drops it)
         return value

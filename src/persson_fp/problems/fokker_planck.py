@@ -87,12 +87,16 @@ class FokkerPlanckProblem(ContactProblem):
         super().__init__(psd, E_star=E_star, p_bar=p_bar, fudge=None, hardness=hardness)
         zeta = np.geomspace(1.0, self.zeta_max, 9)
         for z in zeta:
-            hi = float(self.sigma_Y(z)) if self.hardness is not None else self.p_max(8.0)
+            hi = self.upper_wall.probe_end(float(z), lambda: self.p_max(8.0))
             self.coefficients(np.linspace(0.0, hi, 33), z)
 
     @property
     def general(self) -> bool:
         return True
+
+    @property
+    def features(self) -> frozenset:
+        return super().features | {"general"}
 
     def with_loads(self, p_bar) -> FokkerPlanckProblem:
         """The same surface, coefficients and hardness with other load(s).

@@ -61,6 +61,38 @@ Below 1e-10 the cell averages of the finite-volume and Chapman--Kolmogorov metho
 round-off (measured: 7e-4 relative A* error at 1e-14, 93 % at 1e-20); 'sines' and pf.exact are exact
 there.  Large loads are refused by the grid-resolution checks with the same hint."""
 
+FEATURES = {
+    "hardness": "a hardness wall",
+    "moving_wall": "a scale-dependent hardness (moving yield wall)",
+    "general": "general Fokker-Planck coefficients",
+}
+"""What a problem may need beyond the homogenised elastic one (``ContactProblem.features``), in words: a method
+lists those it solves in its ``SUPPORTS``."""
+
+_SUPPORTERS: list = []
+"""The hint-maker set by the registry of methods (``persson_fp.solvers.registry``): feature -> method names."""
+
+
+def supporters_hint(feature: str) -> str:
+    """'use method=...' naming the methods of the registry (quoted, each with its condition) whose ``SUPPORTS`` hold
+    ``feature``."""
+    names = _SUPPORTERS[0](feature) if _SUPPORTERS else []
+    if not names:
+        return "no method solves it"
+    return "use method=" + (names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1])
+
+
+def load_handlers(problem) -> str:
+    """Which methods handle a load that another method refuses: the closed forms where the problem has one,
+    else chebyshev (the spectral method, accurate at any load)."""
+    beyond = problem.features - {"hardness"}  # what the closed forms do not cover
+    if not beyond:
+        return LOAD_HANDLERS
+    return "method 'chebyshev' handles it " + (
+        "(general coefficients)" if "general" in beyond else "without a fudge factor"
+    )
+
+
 LOAD_HANDLERS = "method 'sines' (p_bar / sqrt(tau) up to about 2e3) or the closed form pf.exact (any load) handle it"
 
 MEMORY_BUDGET = 4 * 2**30
@@ -183,24 +215,10 @@ class Solver:
         if not isinstance(problem, ContactProblem):
             raise ValueError(f"problem must be a ContactProblem, got {type(problem).__name__}")
         self.problem = problem
-        needs = []
-        if problem.hardness is not None:
-            needs.append("moving_wall" if problem.moving_wall else "hardness")
-        if problem.general:
-            needs.append("general")
-        for need in needs:
-            if need not in self.SUPPORTS:
-                what = {
-                    "hardness": "a hardness wall",
-                    "moving_wall": "a scale-dependent hardness (moving yield wall)",
-                    "general": "general Fokker-Planck coefficients",
-                }[need]
-                which = {
-                    "hardness": "'fv', 'mol' or 'sines'",
-                    "moving_wall": "'fv', 'mol' or (without a fudge factor) 'chebyshev'",
-                    "general": "'chebyshev', 'fv' or 'mol'",
-                }
-                raise ValueError(f"method {self.name!r} does not solve {what}; use method={which[need]}")
+        missing = problem.features - self.SUPPORTS
+        if missing:
+            need = min(missing)
+            raise ValueError(f"method {self.name!r} does not solve {FEATURES[need]}; {supporters_hint(need)}")
         self.check = check if check is True or check is False else check_bool(check, "check")
         self.max_memory, self.max_time = check_budgets(max_memory, max_time)
         known = self.OPTIONS.keys()
@@ -260,15 +278,14 @@ class Solver:
         if lo <= 0.0 and hi == np.inf:  # no range: every positive load is in it (and nothing to compute)
             return
         pr = self.problem
-        who = "method 'chebyshev' handles it " + ("(general coefficients)" if pr.general else "without a fudge factor")
-        scale = pr.tau_max if pr.has_closed_form else pr.V_max  # (no exact tau for a moving wall with S)
+        scale = pr.upper_wall.tau_scale(pr)  # (V_max for a moving wall: no exact tau there with S)
         ratio = pr.p_bar / np.sqrt(scale)
         for bad, side in ((ratio < lo, f"below {lo:g}"), (ratio > hi, f"above {hi:g}")):
             if np.any(bad):
                 r = float(ratio[bad][0])
                 raise ValueError(
                     f"{self.name}: the load p_bar / sqrt(tau(zeta_max)) = {r:.3g} is {side}, where this method "
-                    f"loses its relative accuracy; {who if pr.general or pr.moving_wall else LOAD_HANDLERS}"
+                    f"loses its relative accuracy; {load_handlers(pr)}"
                 )
 
     def check_memory(self, n_p=None) -> None:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import importlib
 
+from persson_fp.solvers import base as _base
 from persson_fp.solvers.base import Solver
 
 __all__ = ["METHODS", "EXTRAS", "get_solver", "available_methods"]
@@ -76,6 +77,27 @@ def get_solver(method: str | type[Solver]) -> type[Solver]:
 
 _LOADED: dict = {}
 """Method name -> solver class, for the methods imported so far."""
+
+
+def supporting(feature: str) -> list[str]:
+    """The methods (quoted names) whose ``SUPPORTS`` hold ``feature`` ("hardness", "moving_wall", "general"), in the
+    order of ``METHODS``, each with its own condition where it has one (``SUPPORT_NOTES``).  A method of an
+    optional package counts once it has been imported (asking does not import py-pde or FiPy)."""
+    out = []
+    for name in METHODS:
+        if name in EXTRAS and name not in _LOADED:
+            continue
+        try:
+            cls = get_solver(name)
+        except (ImportError, NotImplementedError):  # (a method not installed or not built: not a hint)
+            continue
+        if feature in cls.SUPPORTS:
+            note = getattr(cls, "SUPPORT_NOTES", {}).get(feature)
+            out.append(repr(name) if note is None else f"{name!r} ({note})")
+    return out
+
+
+_base._SUPPORTERS[:] = [supporting]
 
 
 def available_methods() -> list[str]:

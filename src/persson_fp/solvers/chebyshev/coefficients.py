@@ -48,7 +48,7 @@ class Coefficients:
         z_ref = float(pr.zeta_max)
         if not float(pr.dV_dzeta(z_ref)) > 0:
             raise ValueError("method 'chebyshev' needs dV/dzeta > 0 at zeta_max")
-        hi = float(pr.sigma_Y(1.0)) if pr.hardness is not None else pr.p_max(8.0)
+        hi = pr.upper_wall.probe_end(1.0, lambda: pr.p_max(8.0))
         self._probe = np.linspace(0.0, hi, 33)
         self.z_ref = z_ref
         self._tau_cache: dict = {}

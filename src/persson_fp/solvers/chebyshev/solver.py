@@ -90,6 +90,7 @@ class ChebyshevSolver(Solver):
 
     name = "chebyshev"
     SUPPORTS = frozenset({"general", "hardness", "moving_wall"})
+    SUPPORT_NOTES = {f: "without a fudge factor" for f in ("hardness", "moving_wall")}
     OPTIONS = {"tol": None, "n_p": None, "V0_fraction": None, "k_domain": None, "march": None}
     DEFAULT_TOL, MARCH_DEFAULT_TOL = 1e-8, 1e-6  # (the march's cost grows ~5-8x a decade of tol)
 
@@ -116,7 +117,7 @@ class ChebyshevSolver(Solver):
                 f"method 'chebyshev' solves fudge-free problems (B2 = b(p) dV/dzeta), got fudge={pr.fudge.name!r}; "
                 "use method='sines', 'fv' or 'mol'"
             )
-        self._sigma = float(pr.sigma_Y(1.0)) if pr.hardness is not None else None
+        self._sigma = pr.upper_wall.strip_sigma()  # (the fixed yield wall's sigma_Y; None without one)
         self._cf = cf = Coefficients(self.problem)
         if o["march"] not in (None, "magnus"):
             raise ValueError(f"march must be None (choose) or 'magnus' (force the adaptive march), got {o['march']!r}")

@@ -18,12 +18,11 @@ import numpy as np
 
 from persson_fp._warn import warn_user
 from persson_fp.results.solution import SolverError
-from persson_fp.solvers.front_fixed.moving_wall import MovingWall, check_resolved, domain_end
+from persson_fp.solvers.front_fixed.models import STATION_FLOOR, model_of
+from persson_fp.solvers.front_fixed.moving_wall import MovingWall, check_resolved
 
 __all__ = ["richardson", "run_pair", "finish", "STATION_FLOOR", "LARGE_ESTIMATE"]
 
-STATION_FLOOR = 0.1
-"""General coefficients: no station's error estimate is below this fraction of its neighbours' (:func:`finish`)."""
 LARGE_ESTIMATE = 1e-2
 """An error estimate of the areas above this is warned about (a RuntimeWarning; the result is still returned)."""
 
@@ -47,7 +46,8 @@ def run_pair(problem, V_st, zeta_st, n: int, zeta0, k_domain: float, run, max_ti
     the two coarse runs share their grid, so their difference is the start alone)."""
     pr = problem
     V_st = np.asarray(V_st, dtype=float)
-    p_end, dom = (None, None) if pr.hardness is not None else domain_end(pr, k_domain)
+    model = model_of(pr)
+    p_end, dom = pr.upper_wall.grid_cut(lambda: model.domain_end(pr, k_domain))
     check_resolved(pr, V_st, n, zeta_st, k_domain, p_end)
     deadline = time.perf_counter() + float(max_time)
 
@@ -59,14 +59,7 @@ def run_pair(problem, V_st, zeta_st, n: int, zeta0, k_domain: float, run, max_ti
     fine = run(grid(n), V_st, V0=_start_V(pr, zeta0), level=0)
     coarse = run(grid(max(n // 2, 4)), V_st, V0=fine["V0"], level=1)
     fine["domain"] = dom
-    if pr.general:
-        V1 = 2.0 * fine["V0"]
-        if V1 >= 0.5 * V_st[0]:  # no room before the first station: start earlier instead
-            V1 = 0.5 * fine["V0"]
-        other = run(grid(max(n // 2, 4)), V_st, V0=V1, level=1)
-        fine["start_error"] = {q: np.abs(other[q] - coarse[q]) for q in _QUANTITIES}
-        fine["start_error"]["L1"] = np.abs(other["W"] - coarse["W"]).sum(axis=-1) / coarse["W"].shape[-1]
-        fine["start_V"] = (fine["V0"], V1)
+    model.start_partner(run, grid, n, V_st, fine, coarse)  # (general coefficients: the start's own error)
     return fine, coarse
 
 
@@ -98,37 +91,25 @@ def finish(problem, n: int, fine: dict, coarse: dict, what: str, tol, info_extra
         for q in est:
             est[q] = est[q] + start[q]
         parts["start"] = max(float(np.max(start[q])) for q in ("elastic_area", "noncontact_area"))
-    far = None
-    if pr.hardness is None:  # mass lost through the far wall: the true A_el and A_non may hold up to it each
-        far = fine["plastic_area"]
+    model = model_of(pr)
+    far = pr.upper_wall.loss(fine["plastic_area"])
+    if far is not None:  # mass lost through the far cut: the true A_el and A_non may hold up to it each
         for q in ("elastic_area", "noncontact_area", "L1"):
             est[q] = est[q] + far
         # A* = A_el = 1 - A_non - A_far: Solution reads the A* estimate from the A_non one, so it holds both
         est["noncontact_area"] = np.maximum(est["noncontact_area"], est["elastic_area"])
         parts["far_wall"] = float(np.max(far))
-    # general coefficients: a difference that changes sign between stations passes through 0 where the error need
-    # not; no station's estimate is below STATION_FLOOR x its neighbours' (per load)
-    if pr.general:
-        for q in est:
-            e = est[q]
-            if np.all(np.isnan(e)) or e.shape[0] < 2:
-                continue
-            nb = np.maximum(np.vstack([e[1:2], e[:-1]]), np.vstack([e[1:], e[-2:-1]]))
-            est[q] = np.maximum(e, STATION_FLOOR * nb)
+    est = model.floor_stations(est)  # (general coefficients: no station below a fraction of its neighbours')
     area_sum = fine["elastic_area"] + fine["plastic_area"] + fine["noncontact_area"]
     area_residual = float(np.max(np.abs(area_sum - 1.0)))
     # the first-moment law: F_el + s a = L0 + int int b1 P dp dV (the wall at p = 0 carries no load; without a
     # hardness s a is what the far wall took away, with one it is the plastic load)
-    L0 = fine["start_load"] if pr.general else pr.p_bar
+    L0 = model.start_load(fine, pr)
     law_total = L0[None, :] + fine["drift_load"]
     total = fine["elastic_load"] + fine["plastic_load"]
     # the law and the load are both discrete: each carries its own discretisation error (Richardson, as above);
     # the residual beyond them is what breaks the law
-    if pr.general:
-        law_c = coarse["start_load"][None, :] + coarse["drift_load"]
-        law_err = np.abs(law_total - law_c) + np.abs(total - coarse["elastic_load"] - coarse["plastic_load"])
-    else:
-        law_err = np.zeros_like(total)
+    law_err = model.law_error(fine, coarse, law_total, total)
     load_residual = float(np.max(np.abs(total - law_total) / pr.p_bar))
     load_excess = float(np.max(np.maximum(np.abs(total - law_total) - law_err, 0.0) / pr.p_bar))
     if area_residual > 1e-10:
@@ -162,10 +143,10 @@ def finish(problem, n: int, fine: dict, coarse: dict, what: str, tol, info_extra
         "area_residual": area_residual,
         "load_residual": load_residual,
         # what sol.load (int p P0 dp + sigma_Y A_pl) must equal by the first-moment law (checked by the invariants)
-        "load_law": law_total - (fine["plastic_load"] if pr.hardness is None else 0.0),
+        "load_law": law_total - pr.upper_wall.lost_mass(fine["plastic_load"]),
         "load_law_tolerance": law_err,  # (pressure) the discretisation error of law and load, allowed on top
         "start_plastic_area": fine["start_plastic_area"],
-        "far_wall_mass": float(np.max(fine["plastic_area"])) if pr.hardness is None else 0.0,
+        "far_wall_mass": float(np.max(pr.upper_wall.lost_mass(fine["plastic_area"]))),
         "max_cell_peclet": fine["max_cell_peclet"],
         **({"domain": fine["domain"]} if fine.get("domain") else {}),
         **({"start_V": fine["start_V"]} if "start_V" in fine else {}),
@@ -177,6 +158,6 @@ def finish(problem, n: int, fine: dict, coarse: dict, what: str, tol, info_extra
         kind="cell",
         info=info,
         contact_area=fine["elastic_area"],
-        contact_area_flux=1.0 - fine["noncontact_area"] - (fine["plastic_area"] if pr.hardness is None else 0.0),
-        plastic_area=fine["plastic_area"] if pr.hardness is not None else None,
+        contact_area_flux=1.0 - fine["noncontact_area"] - pr.upper_wall.lost_mass(fine["plastic_area"]),
+        plastic_area=pr.upper_wall.plastic_area(fine["plastic_area"]),
     )

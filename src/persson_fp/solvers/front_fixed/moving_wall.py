@@ -34,6 +34,7 @@ for general coefficients); the observed order is measured in the tests and in ``
 from __future__ import annotations
 
 import time
+from functools import partial
 
 import numpy as np
 
@@ -41,7 +42,7 @@ from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.solution import SolverError
 from persson_fp.solvers.base import StationRecorder, zeta_of
 from persson_fp.solvers.front_fixed import fluxes
-from persson_fp.solvers.front_fixed.domain import coefficient_domain
+from persson_fp.solvers.front_fixed.models import model_of
 from persson_fp.solvers.schemes import TRBDF2_GAMMA, graded
 from persson_fp.theory.fudge import NoFudge
 from persson_fp.theory.strip import strip_cdf, strip_quantities
@@ -67,16 +68,23 @@ class MovingWall:
         self.x_faces = np.linspace(0.0, 1.0, n + 1)
         self.x = 0.5 * (self.x_faces[1:] + self.x_faces[:-1])
         self.no_fudge = isinstance(problem.fudge, NoFudge)
-        self.general = problem.general
+        self.model = model_of(problem)
+        """What the engine asks of the coefficients (:mod:`~persson_fp.solvers.front_fixed.models`)."""
+        # the model's answers for this grid (bound once: no extra frame per right-hand side)
+        self.coefficients = partial(self.model.face_coefficients, self)
+        """``coefficients(V, S_bar)``: the engine coefficients at V with the fudge factor frozen at ``S_bar`` (m,)."""
+        self.drift_cells = partial(self.model.drift_cells, self)
+        """``drift_cells(V)``: b1 = B1 / V'(zeta) at the cell centres (pressure per unit V; zeros without a drift)."""
+        self.drift_rate = partial(self.model.drift_rate, self)
+        r"""``drift_rate(V, y)``: d/dV of the load the drift carries, :math:`\int b_1 P\,dp` (m,)."""
         self.elastic = ContactProblem(problem.psd, problem.E_star, problem.p_bar, problem.fudge)
         # without a hardness the far wall is the end of the numerical domain (what it absorbs is reported as lost);
         # general coefficients: sized from B1 and B2 themselves (persson_fp.solvers.front_fixed.domain)
-        if problem.hardness is not None:
-            self.p_end = None
-        elif p_end is not None:
-            self.p_end = float(p_end)
-        else:
-            self.p_end = domain_end(problem, k_domain)[0]
+        given = None if p_end is None else (float(p_end), None)
+        self.p_end = problem.upper_wall.grid_cut(lambda: given or self.model.domain_end(problem, k_domain))[0]
+        self.wall_many = partial(problem.upper_wall.front, problem, p_end=self.p_end)
+        """``wall_many(V)``: (s, s_V) arrays at complete-contact variances V, the far end of the grid and its rate
+        d s / dV (pressure, 1/pressure): sigma_Y(zeta(V)) at a yield wall, the cut ``p_end`` without one."""
         self._cache = {}
         self._coef_cache = {}
         self._drift_cache = {}
@@ -87,19 +95,6 @@ class MovingWall:
     def zeta(self, V):
         pr = self.problem
         return zeta_of(pr, V)
-
-    def wall_many(self, V):
-        """(s, s_V) arrays at complete-contact variances V: sigma_Y and d sigma_Y / dV (pressure, 1/pressure)."""
-        pr = self.problem
-        if pr.hardness is None:
-            V = np.atleast_1d(np.asarray(V, dtype=float))
-            return np.full(V.shape, self.p_end), np.zeros(V.shape)
-        V = np.atleast_1d(np.asarray(V, dtype=float))
-        z = np.atleast_1d(pr.psd.zeta_of_V_unchecked(V, pr.E_star))  # (zeta_of's kernel, one call less: every step)
-        s = pr.hardness.sigma(z)
-        dV = pr.psd.dV_dzeta_unchecked(z, pr.E_star)
-        sV = np.where(dV > 0, pr.hardness.dsigma_dzeta(z) / np.where(dV > 0, dV, 1.0), 0.0)
-        return s, sV
 
     def wall(self, V):
         """(s, s_V) at one V, from the cache that :meth:`prefill` fills (vectorised) for a march's stage times."""
@@ -115,65 +110,6 @@ class MovingWall:
         pts = np.concatenate([V_nodes, t + TRBDF2_GAMMA * dt, t + dt, t + 0.5 * dt, (t + 0.5 * dt) + 0.5 * dt])
         s, sV = self.wall_many(pts)
         self._cache.update(zip(pts.tolist(), zip(s.tolist(), sV.tolist())))
-
-    def coefficients(self, V, S_bar):
-        """Engine coefficients at V with the fudge factor frozen at ``S_bar`` (m,)."""
-        if self.general:
-            return self._general_coefficients(V)
-        hit = self._cache.get(V)  # (wall(V), one call less: this runs at every right-hand side)
-        if hit is None:
-            s_, sV_ = self.wall_many(np.array([V]))
-            hit = self._cache[V] = (float(s_[0]), float(sV_[0]))
-        s, sV = hit
-        m = self.problem.n_loads
-        S_bar = np.broadcast_to(np.asarray(S_bar, dtype=float), (m,))
-        D = (S_bar / (2.0 * s * s))[:, None] * np.ones(self.n + 1)
-        v = np.broadcast_to((sV / s) * self.x_faces, (m, self.n + 1))
-        return fluxes.Coefficients(D=D, v=v, beta=2.0 * s * sV / S_bar)
-
-    def _general_coefficients(self, V):
-        r"""Front-fixed form of :math:`\partial_V P = -\partial_p(b_1P) + \tfrac12\partial_p^2(b_2P)`, b = B / V'(zeta):
-        the diffusive flux :math:`-\partial_x(D w)` with :math:`D = b_2/(2s^2)` at the cells (``D_cells``, the
-        Fokker--Planck form), the drift :math:`v = (s_V/s)x - b_1/s` at the faces, :math:`\beta = 2 s s_V / b_2(s)`.
-        Cached per V."""
-        hit = self._coef_cache.get(V)
-        if hit is not None:
-            return hit
-        pr = self.problem
-        s, sV = self.wall(V)
-        z = float(self.zeta(V)[0])  # (from the spectrum's inverse: in [1, zeta_max])
-        dVdz = float(pr.psd.dV_dzeta_unchecked(z, pr.E_star))
-        B1f, B2f = pr.coefficients(s * self.x_faces, z)
-        B1c, B2c = pr.coefficients(s * self.x, z)
-        b1f, b2f, b2c = B1f / dVdz, B2f / dVdz, B2c / dVdz
-        self._drift_cache[V] = B1c / dVdz
-        v = (sV / s) * self.x_faces - b1f / s
-        if sV > 0 and not b2f[-1] > 0:
-            raise ValueError(f"B2 must be > 0 at a moving yield wall (p = {s:.6g}, zeta = {z:.6g}), got {B2f[-1]!r}")
-        beta = 2.0 * s * sV / b2f[-1] if sV > 0 else 0.0
-        m = pr.n_loads
-        c = fluxes.Coefficients(
-            D=np.broadcast_to(b2f / (2.0 * s * s), (m, self.n + 1)),
-            v=np.broadcast_to(v, (m, self.n + 1)),
-            beta=np.full(m, beta),
-            D_cells=np.broadcast_to(b2c / (2.0 * s * s), (m, self.n)),
-        )
-        self._coef_cache[V] = c
-        return c
-
-    def drift_cells(self, V) -> np.ndarray:
-        """b1 = B1 / V'(zeta) at the cell centres at V (pressure per unit V), zeros without general coefficients."""
-        if not self.general:
-            return np.zeros(self.n)
-        if V not in self._drift_cache:
-            self._general_coefficients(V)
-        return self._drift_cache[V]
-
-    def drift_rate(self, V, y) -> np.ndarray:
-        r"""d/dV of the load carried by the drift, :math:`\int b_1 P\,dp = \sum_i b_1(p_i) w_i h` (m,)."""
-        if not self.general:
-            return np.zeros(y.shape[0])
-        return (y[:, : self.n] @ self.drift_cells(V)) * self.h
 
     def load(self, V, y) -> np.ndarray:
         """F_el + s a: the load of the state y (m, n + 1) at V (elastic, plus the wall's mass at the wall)."""
@@ -194,9 +130,7 @@ class MovingWall:
         pr = self.problem
         s0, _ = self.wall(V0)
         tau0 = np.asarray(self.elastic.tau_of_V(np.array([V0])), dtype=float).reshape(pr.n_loads)
-        centre = pr.p_bar
-        if self.general:  # a Gaussian along the mean path: exact for coefficients that do not depend on p
-            centre, tau0 = self.start_moments(float(self.zeta(V0)[0]))
+        centre, tau0 = self.model.start_moments(self, V0, tau0)  # (general: a Gaussian along the mean path)
         edges = s0 * self.x_faces
         F = strip_cdf(edges[None, :], centre[:, None], s0, tau0[:, None])
         q = strip_quantities(centre, s0, tau0)
@@ -363,7 +297,4 @@ def check_resolved(problem, V_st, n: int, zeta_st, k_domain: float = 10.0, p_end
 def domain_end(problem, k_domain: float):
     """(p_end, info) of the far wall without a hardness: from the coefficients for a general problem
     (:func:`~persson_fp.solvers.front_fixed.domain.coefficient_domain`), else max(p_bar) + k sqrt(tau)."""
-    if problem.general:
-        return coefficient_domain(problem, k_domain)
-    p_end = float(problem.p_max(k_domain))
-    return p_end, {"p_end": p_end, "rule": "max(p_bar) + k_domain sqrt(tau(zeta_max))"}
+    return model_of(problem).domain_end(problem, k_domain)

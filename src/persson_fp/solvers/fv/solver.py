@@ -85,7 +85,8 @@ import numpy as np
 from persson_fp.results.solution import InstabilityError
 from persson_fp.solvers.base import Solver, SolverOutput, StationRecorder, check_float, check_int, zeta_of
 from persson_fp.solvers.front_fixed.estimate import finish, run_pair
-from persson_fp.solvers.front_fixed.start import general_start, singular_step_error
+from persson_fp.solvers.front_fixed.models import model_of
+from persson_fp.solvers.front_fixed.start import general_start
 from persson_fp.solvers.fv.dst import dst_eigenvalues  # noqa: F401
 from persson_fp.solvers.fv.operators import (  # noqa: F401  (re-exported: the operators are part of the fv API)
     COUPLINGS,
@@ -265,10 +266,8 @@ class FiniteVolumeSolver(Solver):
         P_out, A_out, Af_out = res["P_out"], res["A_out"], res["Af_out"]
         JN, r_max, dtau_total = res["JN"], res["r_max"], res["dtau_total"]
 
-        if pr.hardness is None:
-            tail = tail_mass(p_max, pr.p_bar, self.tau_out[-1])
-        else:  # the far wall is the yield wall: what it absorbs is the plastic area, not a loss
-            tail = np.zeros(1)
+        # the mass the exact solution has beyond the far cut (none at a yield wall: what it absorbs is plastic area)
+        tail = pr.upper_wall.lost_mass(tail_mass(p_max, pr.p_bar, self.tau_out[-1]))
         info = {
             "grid": {"n_p": N, "p_max": p_max, "dp": dp},
             "edges": self.edges,
@@ -280,7 +279,7 @@ class FiniteVolumeSolver(Solver):
             "order_tau": scheme.order,
             **res["counters"],
             "r_max": r_max,
-            "far_wall_mass": 0.0 if pr.hardness is not None else float(np.max(JN)),
+            "far_wall_mass": float(np.max(pr.upper_wall.lost_mass(JN))),
             "tail_mass_exact": float(np.max(np.abs(tail))),
             "tau_numerical": dtau_total + (0.0 if o["initial"] == "delta" else self._tau0),
             "k_domain": o["k_domain"],
@@ -297,9 +296,9 @@ class FiniteVolumeSolver(Solver):
             contact_area_flux=Af_out,
             # A_pl: the flux absorbed at the yield wall plus the compact scheme's edge term of that wall (so that
             # A_el + A_pl + A_non is conserved to round-off; 0 for fv2)
-            plastic_area=None
-            if pr.hardness is None
-            else self._A_pl0 + res["JN_out"] - w_edge * dp * (P_out[:, :, -1] - P_far0),
+            plastic_area=pr.upper_wall.plastic_area(
+                self._A_pl0 + res["JN_out"] - w_edge * dp * (P_out[:, :, -1] - P_far0)
+            ),
         )
 
     # -- the reference march: tridiagonal solves in p -------------------------------------------
@@ -453,9 +452,7 @@ class FiniteVolumeSolver(Solver):
         try:
             fine, coarse = run_pair(pr, self.V_out, self.zeta_out, n, zeta0, o["k_domain"], run, self.max_time)
         except np.linalg.LinAlgError as err:  # LAPACK's banded solve of I - c L (the engine's implicit step)
-            if not pr.general:
-                raise
-            raise singular_step_error(self.name, pr, f"{type(err).__name__}: {err}") from err
+            model_of(pr).singular_step(err, self.name, pr)
         what = f"|Q(n_p, n_steps) - Q(n_p/2, n_steps/2)|, n_p = {n}, n_steps = {n_steps} (conservative)"
         info = {
             "steps": fine["steps"],

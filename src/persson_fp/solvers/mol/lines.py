@@ -11,7 +11,6 @@ import numpy as np
 from persson_fp.results.solution import SolverError
 from persson_fp.solvers.front_fixed import fluxes
 from persson_fp.solvers.front_fixed.moving_wall import MovingWall
-from persson_fp.solvers.front_fixed.start import clear_start_V, singular_step_error
 
 __all__ = ["solve_lines", "DRAINED"]
 
@@ -54,7 +53,7 @@ def solve_lines(
     m, n, h = pr.n_loads, mw.n, mw.h
     V_st = np.asarray(V_st, dtype=float)
     if V0 is None:
-        V0 = clear_start_V(mw, mw.choose_V0(float(V_st[0]), tau0_fraction))  # (as general_start)
+        V0 = mw.model.clear_start_V(mw, mw.choose_V0(float(V_st[0]), tau0_fraction))  # (as general_start)
     if y0 is None:
         y0w, A_non0, A_pl0 = mw.start(V0)
     else:  # a given start, e.g. a manufactured solution
@@ -99,8 +98,7 @@ def solve_lines(
             J[: n + 1, : n + 1] = Lj
             D_wall = np.atleast_2d(c.D if c.D_cells is None else c.D_cells)[j, 0]
             J[n + 1, 0] = -fluxes.AbsorbingWall.flux_coefficient(float(D_wall), h)
-            if mw.general:
-                J[n + 2, :n] = mw.drift_cells(V) * h
+            mw.model.add_drift_jacobian(J, mw, V, n, h)
             blocks.append(J.tocsr())
         return sp.block_diag(blocks, format="csr")
 
@@ -130,9 +128,7 @@ def solve_lines(
             events=remaining if drained > 0.0 and source is None else None,
         )
     except (RuntimeError, np.linalg.LinAlgError) as err:  # SuperLU: "Factor is exactly singular"
-        if not (mw.general and "singular" in str(err)):
-            raise
-        raise singular_step_error("mol", pr, f"{type(err).__name__}: {err}", mw.p_end) from err
+        mw.model.singular_step(err, "mol", pr, mw.p_end, needs="singular")
     if not res.success:
         raise SolverError(f"mol (moving wall): solve_ivp failed ({res.message})")
     Y = np.empty((V_st.size, m, k))

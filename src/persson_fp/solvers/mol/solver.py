@@ -234,12 +234,7 @@ class MethodOfLinesSolver(Solver):
         nofudge = isinstance(fudge, NoFudge)
         self._grid_cache = (p, h, w)
         # the contact area that S sees, A = wA . P + a0: A_el, plus (constant hardness) A_pl = (p_bar - F_el)/sigma
-        if pr.hardness is not None:
-            sig = float(pr.hardness.sigma(1.0))
-            wA = w - w * pi / sig
-            a0 = pr.p_bar / sig
-        else:
-            wA, a0 = w, np.zeros(nl)
+        wA, a0 = pr.upper_wall.fudge_area_weights(w, pi, pr.p_bar)
         info = {}
 
         # initial data
@@ -436,11 +431,10 @@ class MethodOfLinesSolver(Solver):
             if sysm.augmented:
                 V_out = np.atleast_1d(pr.V(zeta_out)).astype(float)
                 pi = p[1:-1]
-                sig = None if pr.hardness is None else float(pr.hardness.sigma(1.0))
+                wall = pr.upper_wall
 
                 def S_of(P, j):  # S at the area of load j's P (..., m), A_pl from the load balance with a hardness
-                    A = P @ w if sig is None else P @ w + (pr.p_bar[j] - P @ (w * pi)) / sig
-                    return pr.fudge.S(A)
+                    return pr.fudge.S(wall.contact_for_fudge(P, w, pi, pr.p_bar[j]))
 
                 tau_st, P, steps = ivp_march.march_own(
                     solver, n + np.arange(nl), np.arange(n).reshape(nl, m), V_out, S_of, "mol", deadline=deadline
@@ -476,10 +470,9 @@ class MethodOfLinesSolver(Solver):
             "tau_out": tau_info,
         }
         wq = quadrature_weights(o["n_p"], h, o["order"])
-        plastic = None
-        if pr.hardness is not None:  # the strip's load balance F_el + sigma A_pl = p_bar gives A_pl
-            # (clipped at 0: the quadrature error of F_el may push a vanishing A_pl a little below, -5e-8 measured)
-            plastic = np.maximum((pr.p_bar - P_full @ (wq * p)) / float(pr.hardness.sigma(1.0)), 0.0)
+        # a constant hardness: the strip's load balance F_el + sigma A_pl = p_bar gives A_pl (clipped at 0: the
+        # quadrature error of F_el may push a vanishing A_pl a little below, -5e-8 measured); None without a wall
+        plastic = pr.upper_wall.plastic_from_load(pr.p_bar, P_full @ (wq * p))
         return SolverOutput(p=p, P0=P_full, weights=wq, kind="point", info=info, plastic_area=plastic)
 
     def _solve_in_chunks(self) -> SolverOutput:

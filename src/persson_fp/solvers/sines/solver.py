@@ -226,11 +226,11 @@ class SineSeriesSolver(Solver):
         # odd modes carry the area (summed as before: a matmul is a little faster but moves the last bits, and
         # the notebooks quote round-off-level errors of the committed runs)
         A = (coef[..., ::2] * two_over_k_odd).sum(axis=-1)  # the odd modes n = 1, 3, 5, ...
-        plastic = None
-        if pr.hardness is not None:  # L = sigma_Y: the mass absorbed at the yield wall, summed in closed form
-            n = np.arange(1, N_out + 1, dtype=float)
-            sgn = np.where(n % 2 == 1, 1.0, -1.0)
-            plastic = pb / L - (coef * (sgn * L / (n * np.pi))).sum(axis=-1)  # strip: A_pl sine series
+        # the mass absorbed at the far wall, summed in closed form: with a hardness (L = sigma_Y) the plastic area
+        # (the strip's A_pl sine series); without one a loss below tol, which the wall does not report as an area
+        n = np.arange(1, N_out + 1, dtype=float)
+        sgn = np.where(n % 2 == 1, 1.0, -1.0)
+        plastic = pr.upper_wall.plastic_area(pb / L - (coef * (sgn * L / (n * np.pi))).sum(axis=-1))
         info = {
             "grid": "Gauss-Legendre",
             "p_max": L,
