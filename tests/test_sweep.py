@@ -392,16 +392,16 @@ def test_separation_quantities_register_when_the_module_exists():
         assert added == missing
         if added:  # the wrappers look the module up by name
             pr = pf.ContactProblem.reference(p_bar_ratio=np.array([0.1, 0.2]))
-            old = sys.modules.get("persson_fp.theory.separation")
-            sys.modules["persson_fp.theory.separation"] = fake
+            old = sys.modules.get("persson_fp.analysis.separation")
+            sys.modules["persson_fp.analysis.separation"] = fake
             try:
                 np.testing.assert_array_equal(pq.QUANTITIES["stiffness"](pr, None), 2 * pr.p_bar)
                 assert pq.QUANTITIES["mean_separation"].unit == "length"
             finally:
                 if old is None:
-                    del sys.modules["persson_fp.theory.separation"]
+                    del sys.modules["persson_fp.analysis.separation"]
                 else:
-                    sys.modules["persson_fp.theory.separation"] = old
+                    sys.modules["persson_fp.analysis.separation"] = old
     finally:
         for n in added:
             del pq.QUANTITIES[n]

@@ -7,18 +7,19 @@ physics around it, and numerical solvers behind :func:`solve`.
 """
 
 from persson_fp._version import __version__
-from persson_fp.calibration import Calibration, ModelSelection, calibrate
-from persson_fp.problems.contact import ContactProblem
-from persson_fp.problems.fokker_planck import FokkerPlanckProblem
-from persson_fp.results.energy import elastic_energy, pressure_spectrum
-from persson_fp.results.exact import ExactSolution, exact
-from persson_fp.results.interface import (
+from persson_fp.analysis.energy import elastic_energy, pressure_spectrum
+from persson_fp.analysis.exact import ExactSolution, exact
+from persson_fp.analysis.interface import (
     AdhesiveContact,
     adhesive_contact,
     contact_conductance,
     gap_distribution,
     leak_rate,
 )
+from persson_fp.analysis.separation import contact_stiffness, mean_separation
+from persson_fp.calibration import Calibration, ModelSelection, calibrate
+from persson_fp.problems.contact import ContactProblem
+from persson_fp.problems.fokker_planck import FokkerPlanckProblem
 from persson_fp.results.solution import Comparison, InstabilityError, Solution, SolverError
 from persson_fp.solvers import METHODS, available_methods, solve
 from persson_fp.surfaces.conventions import CONVENTIONS, abel_factor, abel_forward, abel_inverse
@@ -35,13 +36,7 @@ from persson_fp.theory.effective import EffectiveVariance, effective_variance
 from persson_fp.theory.gaps import GapDistribution
 from persson_fp.theory.image import area_from_tau, image_pdf, variance_closed_form
 from persson_fp.theory.resolved import MagnificationResolved
-from persson_fp.theory.separation import (
-    WEIGHTINGS,
-    MeanSeparation,
-    contact_stiffness,
-    mean_separation,
-    separation_from_areas,
-)
+from persson_fp.theory.separation import WEIGHTINGS, MeanSeparation, separation_from_areas
 
 __all__ = [
     "PSD",

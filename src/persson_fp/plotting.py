@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
+from persson_fp.analysis.exact import exact
 from persson_fp.problems.contact import ContactProblem
-from persson_fp.results.exact import exact
 
 if TYPE_CHECKING:  # matplotlib is imported only when a figure is drawn
     from matplotlib.axes import Axes

@@ -25,8 +25,8 @@ import warnings
 import numpy as np
 from scipy.optimize import least_squares
 
+from persson_fp.analysis.exact import exact
 from persson_fp.problems.contact import ContactProblem
-from persson_fp.results.exact import exact
 from persson_fp.theory.separation import MeanSeparation
 
 __all__ = ["Objective", "predict", "fit", "covariance", "PENALTY"]

@@ -8,6 +8,7 @@ import time
 
 import numpy as np
 
+from persson_fp.analysis.exact import exact
 from persson_fp.cli._io import (
     CLIError,
     _atomic_open,
@@ -24,7 +25,6 @@ from persson_fp.cli._problem import (
     _progress,
 )
 from persson_fp.problems.contact import ContactProblem
-from persson_fp.results.exact import exact
 
 
 def cmd_area(args) -> int:

@@ -9,6 +9,8 @@ import os
 import numpy as np
 
 from persson_fp._version import __version__
+from persson_fp.analysis.energy import elastic_energy
+from persson_fp.analysis.exact import exact
 from persson_fp.cli._io import (
     _atomic_open,
     _note_replaced,
@@ -21,8 +23,6 @@ from persson_fp.cli._problem import (
     _problem,
     _progress,
 )
-from persson_fp.results.energy import elastic_energy
-from persson_fp.results.exact import exact
 
 
 def cmd_report(args) -> int:

@@ -8,6 +8,7 @@ import time
 
 import numpy as np
 
+from persson_fp.analysis.exact import exact
 from persson_fp.cli._io import (
     CLIError,
     _atomic_open,
@@ -22,7 +23,6 @@ from persson_fp.cli._problem import (
     _problem,
 )
 from persson_fp.problems.contact import ContactProblem
-from persson_fp.results.exact import exact
 from persson_fp.theory.hardness import PowerLaw
 
 

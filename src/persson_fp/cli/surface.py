@@ -89,8 +89,8 @@ def _read(args):
 def cmd_surface(args) -> int:
     import warnings
 
+    from persson_fp.analysis.exact import exact
     from persson_fp.problems.contact import ContactProblem
-    from persson_fp.results.exact import exact
     from persson_fp.theory.separation import MeanSeparation
 
     if not (0 < args.ratio_min < args.ratio_max) or not np.isfinite(args.ratio_max):
@@ -180,9 +180,9 @@ def cmd_surface(args) -> int:
 
 
 def _interface(psd, E, p_bar, fudge, args):
-    """Gap distribution, critical-junction and effective-medium leak rates (:mod:`persson_fp.results.interface`)."""
+    """Gap distribution, critical-junction and effective-medium leak rates (:mod:`persson_fp.analysis.interface`)."""
+    from persson_fp.analysis.interface import gap_distribution, leak_rate
     from persson_fp.problems.contact import ContactProblem
-    from persson_fp.results.interface import gap_distribution, leak_rate
 
     problem = ContactProblem(psd, E, p_bar, fudge)
     flow = dict(viscosity=args.viscosity, pressure_drop=args.pressure_drop)

@@ -1,2 +1,2 @@
-"""What a problem gives: the exact solution (:func:`persson_fp.exact`) and its energy, numerical solutions
-(:class:`~persson_fp.Solution`), their comparison with the exact one and the invariant checks."""
+"""What a solver gives: numerical solutions (:class:`~persson_fp.Solution`), the solver output they are built from,
+their comparison with the exact solution (:mod:`persson_fp.analysis`) and the invariant checks."""

@@ -17,9 +17,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from persson_fp.analysis.exact import exact
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.results.comparison import Comparison, compare_with_exact
-from persson_fp.results.exact import exact
 from persson_fp.results.invariants import DEFAULT_TOLERANCES, InstabilityError, SolverError, check_invariants
 from persson_fp.results.output import SolverOutput
 
@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from numpy.typing import ArrayLike
 
-    from persson_fp.results.exact import ExactSolution
+    from persson_fp.analysis.exact import ExactSolution
 
 __all__ = ["Solution", "Comparison", "SolverError", "InstabilityError", "check_invariants", "DEFAULT_TOLERANCES"]
 

@@ -22,8 +22,8 @@ import warnings
 import numpy as np
 
 from persson_fp._validate import as_float_array
+from persson_fp.analysis.exact import exact
 from persson_fp.problems.contact import ContactProblem
-from persson_fp.results.exact import exact
 from persson_fp.results.output import SolverOutput
 from persson_fp.results.solution import DEFAULT_TOLERANCES, InstabilityError, Solution
 from persson_fp.solvers.options import K_DOMAIN_MIN, check_bool, check_float, check_int, check_k_domain

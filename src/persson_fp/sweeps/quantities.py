@@ -14,9 +14,9 @@ Tutorial Based on Stochastic Process Theory"):
 - ``"elastic_energy"``: U_el / A_n (``eq:Uel_original``), always by the closed-form quadrature of
   :func:`persson_fp.elastic_energy` (the method does not enter).
 
-When :mod:`persson_fp.theory.separation` is installed (mean interfacial separation, Persson, PRL 99 (2007)
+When :mod:`persson_fp.analysis.separation` is installed (mean interfacial separation, Persson, PRL 99 (2007)
 125502; Yang & Persson, J. Phys.: Condens. Matter 20 (2008) 215214), ``"mean_separation"`` and
-``"stiffness"`` are registered too.  What happens in the gaps (:mod:`persson_fp.results.interface`):
+``"stiffness"`` are registered too.  What happens in the gaps (:mod:`persson_fp.analysis.interface`):
 ``"gap_mean"`` (mean of P(u)), ``"leak_rate"`` (critical junction, Q eta/dp = u_c^3/12 for a square seal),
 ``"conductance"`` (Barber's C (rho1 + rho2) = 2K/E*) and ``"pull_off"`` (DMT, an exponential law with
 w = 0.1 U_el of full contact and rho = h_rms; register your own law with ``functools.partial`` of
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from persson_fp.results.energy import elastic_energy
+from persson_fp.analysis.energy import elastic_energy
 
 __all__ = ["Quantity", "QUANTITIES", "register_quantity", "get_quantities"]
 
@@ -146,9 +146,9 @@ register_quantity(
 )
 
 
-# -- mean separation and stiffness, once persson_fp.theory.separation exists ---------------------------------
+# -- mean separation and stiffness, once persson_fp.analysis.separation exists -------------------------------
 def _separation_module():
-    return importlib.import_module("persson_fp.theory.separation")
+    return importlib.import_module("persson_fp.analysis.separation")
 
 
 def _mean_separation(problem, solution):
@@ -184,13 +184,13 @@ def _register_separation(module) -> list:
 try:  # guarded: the module may not be there yet (any other import error inside it is not hidden)
     _register_separation(_separation_module())
 except ModuleNotFoundError as _err:  # pragma: no cover - depends on the installed version
-    if _err.name != "persson_fp.theory.separation":
+    if _err.name != "persson_fp.analysis.separation":
         raise
 
 
-# -- what happens in the gaps (persson_fp.results.interface) ---------------------------------------------------
+# -- what happens in the gaps (persson_fp.analysis.interface) --------------------------------------------------
 def _interface():
-    return importlib.import_module("persson_fp.results.interface")
+    return importlib.import_module("persson_fp.analysis.interface")
 
 
 def _gap_mean(problem, solution):

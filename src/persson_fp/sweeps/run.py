@@ -24,8 +24,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from persson_fp._validate import as_float_array, as_positive_scalar
+from persson_fp.analysis.exact import exact
 from persson_fp.problems.contact import ContactProblem
-from persson_fp.results.exact import exact
 from persson_fp.surfaces.psd import PSD
 from persson_fp.surfaces.tabulated import TabulatedPSD
 from persson_fp.sweeps.quantities import get_quantities

@@ -52,7 +52,7 @@ from persson_fp.surfaces.psd import PSD
 from persson_fp.theory import fudge as _fudge
 from persson_fp.theory.separation_weight import _GL_W, _GL_X, _weight
 
-__all__ = ["WEIGHTINGS", "MeanSeparation", "mean_separation", "contact_stiffness", "separation_from_areas"]
+__all__ = ["WEIGHTINGS", "MeanSeparation", "separation_from_areas"]
 
 WEIGHTINGS = ("yang-persson", "corrected-area")
 """Energy weightings for fudge-factor models (see the module docstring); the first is the default."""
@@ -290,75 +290,6 @@ class MeanSeparation:
             Prefactor.
         """
         return self.u0, self.beta
-
-
-def _elastic_only(problem) -> None:
-    if getattr(problem, "hardness", None) is not None or getattr(problem, "general", False):
-        raise ValueError(
-            "the mean separation of this module is the elastic theory's (Persson 2007); a problem with a hardness "
-            "or general coefficients is not covered (use separation_from_areas with a numerical solution's areas)"
-        )
-
-
-def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:
-    r"""Mean interfacial separation :math:`\bar u` at the loads of a contact problem.
-
-    Persson's theory (Persson, Phys. Rev. Lett. 99 (2007) 125502; Yang & Persson, J. Phys.: Condens. Matter
-    20 (2008) 215214) with the problem's spectrum, E* and fudge factor; see :class:`~persson_fp.MeanSeparation`
-    (which to use for many loads or for the energy and stiffness too).
-
-    Parameters
-    ----------
-    problem : ContactProblem
-        The surface, modulus, loads and fudge factor (:class:`~persson_fp.ContactProblem`).
-    weighting : {"yang-persson", "corrected-area"}
-        Energy weighting of a fudge model (see :mod:`persson_fp.theory.separation`).
-
-    Returns
-    -------
-    float or ndarray, length
-        :math:`\bar u` at each load: a float for a scalar load, else an array of shape ``(n_loads,)``.
-
-    Raises
-    ------
-    ValueError
-        A problem with a hardness or general coefficients (this is the elastic theory's separation; use
-        :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
-    """
-    _elastic_only(problem)
-    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
-    out = ms.mean_separation(problem.p_bar)
-    return float(out[0]) if problem.scalar_load else out
-
-
-def contact_stiffness(problem, weighting: str = "yang-persson") -> np.ndarray:
-    r"""Normal contact stiffness per nominal area :math:`K = -d\bar p/d\bar u` at the loads of a contact problem.
-
-    From Persson's mean separation (Persson, Phys. Rev. Lett. 99 (2007) 125502), :math:`K = \bar p/(dU/d\bar p)`;
-    see :class:`~persson_fp.MeanSeparation`.
-
-    Parameters
-    ----------
-    problem : ContactProblem
-        The surface, modulus, loads and fudge factor (:class:`~persson_fp.ContactProblem`).
-    weighting : {"yang-persson", "corrected-area"}
-        Energy weighting of a fudge model (see :mod:`persson_fp.theory.separation`).
-
-    Returns
-    -------
-    float or ndarray, pressure / length
-        K at each load: a float for a scalar load, else an array of shape ``(n_loads,)``.
-
-    Raises
-    ------
-    ValueError
-        A problem with a hardness or general coefficients (this is the elastic theory's separation; use
-        :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
-    """
-    _elastic_only(problem)
-    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
-    out = ms.stiffness(problem.p_bar)
-    return float(out[0]) if problem.scalar_load else out
 
 
 def separation_from_areas(psd: PSD, E_star, p_bar, zeta, A, fudge=None):

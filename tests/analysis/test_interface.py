@@ -312,7 +312,7 @@ def test_surface_command_writes_gaps_leak_rate_and_conductance(tmp_path, capsys)
 
     N = 128
     d = np.load(
-        os.path.join(os.path.dirname(__file__), "..", "data", "bem", "surfaces", "surface_H0.8_seed1_modes.npz")
+        os.path.join(os.path.dirname(__file__), "..", "..", "data", "bem", "surfaces", "surface_H0.8_seed1_modes.npz")
     )
     H = np.zeros((N, N), complex)
     H[np.ix_(d["k"] % N, d["k"] % N)] = d["hq"]
@@ -336,7 +336,7 @@ def test_surface_command_writes_gaps_leak_rate_and_conductance(tmp_path, capsys)
 
 def test_separation_on_a_measured_spectrum():
     t = np.genfromtxt(
-        os.path.join(os.path.dirname(__file__), "..", "data", "bem", "psd_shells_H0.8_seed1.csv"),
+        os.path.join(os.path.dirname(__file__), "..", "..", "data", "bem", "psd_shells_H0.8_seed1.csv"),
         delimiter=",",
         names=True,
     )
@@ -461,7 +461,7 @@ def test_interface_speed_benchmark_quick(tmp_path):
     import importlib
     import sys
 
-    bench = os.path.join(os.path.dirname(__file__), "..", "benchmarks")
+    bench = os.path.join(os.path.dirname(__file__), "..", "..", "benchmarks")
     if bench not in sys.path:
         sys.path.insert(0, bench)
     rows = importlib.import_module("interface_speed").main(["--quick", "--output", str(tmp_path), "--repeats", "1"])

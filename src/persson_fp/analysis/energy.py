@@ -14,8 +14,8 @@ import numpy as np
 from scipy.integrate import quad_vec
 
 from persson_fp._validate import as_float_array, as_positive_scalar
+from persson_fp.analysis.exact import _check_problem
 from persson_fp.problems.contact import ContactProblem
-from persson_fp.results.exact import _check_problem
 from persson_fp.theory.image import area_from_tau
 
 if TYPE_CHECKING:

@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from persson_fp.analysis.exact import exact
 from persson_fp.problems.contact import ContactProblem
-from persson_fp.results.exact import exact
 from persson_fp.theory import adhesion as _adh
 from persson_fp.theory import leakage as _leak
 from persson_fp.theory.gaps import GapDistribution

@@ -1,0 +1,83 @@
+r"""Mean interfacial separation and normal contact stiffness at the loads of a contact problem.
+
+The front ends of :class:`~persson_fp.MeanSeparation` (Persson, Phys. Rev. Lett. 99 (2007) 125502; Yang & Persson,
+J. Phys.: Condens. Matter 20 (2008) 215214): the problem's spectrum, E*, loads and fudge factor; the formulas are in
+:mod:`persson_fp.theory.separation`.  This module imports no solver.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from persson_fp.theory.separation import MeanSeparation
+
+__all__ = ["mean_separation", "contact_stiffness"]
+
+
+def _elastic_only(problem) -> None:
+    if getattr(problem, "hardness", None) is not None or getattr(problem, "general", False):
+        raise ValueError(
+            "the mean separation of this module is the elastic theory's (Persson 2007); a problem with a hardness "
+            "or general coefficients is not covered (use separation_from_areas with a numerical solution's areas)"
+        )
+
+
+def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:
+    r"""Mean interfacial separation :math:`\bar u` at the loads of a contact problem.
+
+    Persson's theory (Persson, Phys. Rev. Lett. 99 (2007) 125502; Yang & Persson, J. Phys.: Condens. Matter
+    20 (2008) 215214) with the problem's spectrum, E* and fudge factor; see :class:`~persson_fp.MeanSeparation`
+    (which to use for many loads or for the energy and stiffness too).
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        The surface, modulus, loads and fudge factor (:class:`~persson_fp.ContactProblem`).
+    weighting : {"yang-persson", "corrected-area"}
+        Energy weighting of a fudge model (see :mod:`persson_fp.theory.separation`).
+
+    Returns
+    -------
+    float or ndarray, length
+        :math:`\bar u` at each load: a float for a scalar load, else an array of shape ``(n_loads,)``.
+
+    Raises
+    ------
+    ValueError
+        A problem with a hardness or general coefficients (this is the elastic theory's separation; use
+        :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
+    """
+    _elastic_only(problem)
+    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
+    out = ms.mean_separation(problem.p_bar)
+    return float(out[0]) if problem.scalar_load else out
+
+
+def contact_stiffness(problem, weighting: str = "yang-persson") -> np.ndarray:
+    r"""Normal contact stiffness per nominal area :math:`K = -d\bar p/d\bar u` at the loads of a contact problem.
+
+    From Persson's mean separation (Persson, Phys. Rev. Lett. 99 (2007) 125502), :math:`K = \bar p/(dU/d\bar p)`;
+    see :class:`~persson_fp.MeanSeparation`.
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        The surface, modulus, loads and fudge factor (:class:`~persson_fp.ContactProblem`).
+    weighting : {"yang-persson", "corrected-area"}
+        Energy weighting of a fudge model (see :mod:`persson_fp.theory.separation`).
+
+    Returns
+    -------
+    float or ndarray, pressure / length
+        K at each load: a float for a scalar load, else an array of shape ``(n_loads,)``.
+
+    Raises
+    ------
+    ValueError
+        A problem with a hardness or general coefficients (this is the elastic theory's separation; use
+        :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
+    """
+    _elastic_only(problem)
+    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
+    out = ms.stiffness(problem.p_bar)
+    return float(out[0]) if problem.scalar_load else out
