@@ -69,18 +69,145 @@ _C_FV_CELLS = 6e-6 * 200.0**4
 """... + _C_FV_CELLS / n_p^4 (4th order in p)."""
 
 
-def _errors(sol):
-    """(worst L1, worst area error, kind) of a Solution: against pf.exact, or the solver's own estimate."""
-    if sol.problem.has_closed_form:
+class _Plan:
+    """How auto reaches ``tol`` on one kind of problem (:data:`_PLANS`): the error it judges by, the first
+    resolution and the refinement (the front-fixed engine's here; :class:`_ClosedForm` overrides them)."""
+
+    def __init__(self, C: float = _C_FRONT, what: str = "", chebyshev: str | None = None):
+        self.C = C
+        """Error model of the front-fixed engine, estimate ~ C / n^2 at n cells and n steps."""
+        self.what = what
+        """What leaves the closed forms behind, in words."""
+        self.chebyshev = chebyshev
+        """When ``"chebyshev"`` is tried first: "always", "wall" (no fudge factor, tol < _CHEB_WALL_TOL) or None."""
+
+    def solve(self, problem, zeta_out, tol, budget, max_time):
+        """``"chebyshev"`` first where the plan says so, then fv on the front-fixed engine to tol."""
+        declined, cheb_err = "", ""
+        cheb_budget = self.chebyshev_budget(problem, tol, budget)  # the spectral engine first, where it applies
+        if cheb_budget is not None:
+            t_cheb = time.perf_counter()
+            try:
+                return _solve_chebyshev(problem, zeta_out, tol, cheb_budget)
+            except (ValueError, SolverError) as err:
+                declined, cheb_err = f"; method 'chebyshev' declined: {err}", str(err)
+                if max_time is not None and cheb_budget is not budget:  # fv gets what the capped attempt left
+                    budget["max_time"] = max_time - (time.perf_counter() - t_cheb)
+        why = (
+            f"no closed form ({self.what}): finite volumes on the front-fixed engine, n cells and n steps from the "
+            f"measured error model C/n^2, checked by a half-resolution partner run{declined}"
+        )
+        if max_time is not None and budget["max_time"] != max_time:
+            spent = max_time - budget["max_time"]
+            try:
+                if budget["max_time"] <= 0.0:
+                    raise SolverError("no time left")
+                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+            except (ValueError, SolverError) as err:
+                if "max_time" not in str(err) and str(err) != "no time left":
+                    raise
+                raise SolverError(
+                    f"auto: tol = {tol:g} not met within max_time = {max_time:g} s: the chebyshev attempt took "
+                    f"{spent:.3g} s and was declined ({cheb_err[:200]}), and fv then ran out of the rest "
+                    f"({err}); ask for a looser tol or a larger max_time"
+                ) from None
+        return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+
+    def errors(self, sol):
+        """(worst L1, worst area error, kind) of a Solution: the solver's own estimate."""
+        est = sol.info["error_estimate"]
+        area = max(float(np.max(est[q])) for q in ("elastic_area", "plastic_area", "noncontact_area"))
+        L1 = float(np.nanmax(est["L1"])) if np.any(np.isfinite(est["L1"])) else area
+        return L1, area, "estimate (" + str(est.get("method", "|run - half-resolution run|")) + ")"
+
+    def first_options(self, problem, method, tol, zeta_out, options):
+        """The front-fixed engine (fv, and mol's lines on the same fluxes): n cells and n steps from C / n^2."""
+        n = 2 * int(np.clip(math.ceil(math.sqrt(self.C / tol) / 2), 25, 1600))  # even: the partner has n/2
+        n = max(n, _min_engine_cells(problem, method, zeta_out, options or {}))
+        if method == "mol":
+            return {"n_p": n, "rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
+        return {"n_p": n, "n_steps": n}
+
+    def refine_cells(self, n_p: int, f: float) -> int:
+        """n_p of the next attempt, ``f`` the growth of the steps (second order in both on the engine)."""
+        return 2 * int(math.ceil(n_p * f / 2))
+
+    def mol_growth(self, ratio: float) -> float:
+        """Growth of mol's grid on a refinement (error ratio ``ratio``)."""
+        return float(np.clip(1.2 * math.sqrt(ratio), 1.5, 8.0))
+
+    def steps_limited(self, opts) -> int:
+        """The count a refinement may not take beyond MAX_CELLS: cells, and steps on the engine."""
+        return max(opts.get("n_p") or 0, opts.get("n_steps") or 0)
+
+    def chebyshev_budget(self, problem, tol, budget):
+        """The budget of a first ``"chebyshev"`` attempt, or None where this plan goes to fv directly."""
+        if self.chebyshev == "always":
+            return budget
+        if self.chebyshev == "wall" and problem.fudge.name == "none" and tol < _CHEB_WALL_TOL:
+            capped = dict(budget)
+            capped["max_time"] = min(_CHEB_WALL_TIME, budget["max_time"] or math.inf)
+            return capped
+        return None
+
+
+class _ClosedForm(_Plan):
+    """A closed form exists: its error is measured against :func:`persson_fp.exact`; fv and mol refine on their
+    error models of the closed-form scenes."""
+
+    def solve(self, problem, zeta_out, tol, budget, max_time):
+        """The sine series (the closed form summed to tol), or fv where the series cannot serve the scene."""
+        why = (
+            "a closed form exists: the sine series is that solution summed to tol (spectral; the fastest method "
+            "at every tolerance measured in benchmarks/results)"
+        )
+        try:
+            return solve_to_tol(problem, "sines", zeta_out, tol, why=why, **budget)
+        except (ValueError, SolverError) as err:
+            why = f"the sine series could not serve this scene ({err}); finite volumes with a resolution for tol"
+            return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+
+    def errors(self, sol):
         c = sol.compare()
         areas = [c.area_error]
         if c.plastic_area_error is not None:
             areas += [c.elastic_area_error, c.plastic_area_error]
         return float(np.max(c.L1)), float(max(np.max(a) for a in areas)), "true error (against pf.exact)"
-    est = sol.info["error_estimate"]
-    area = max(float(np.max(est[q])) for q in ("elastic_area", "plastic_area", "noncontact_area"))
-    L1 = float(np.nanmax(est["L1"])) if np.any(np.isfinite(est["L1"])) else area
-    return L1, area, "estimate (" + str(est.get("method", "|run - half-resolution run|")) + ")"
+
+    def first_options(self, problem, method, tol, zeta_out, options):
+        if method == "mol":
+            return {"rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
+        n_steps = int(np.clip(math.ceil(math.sqrt(2.0 * _C_FV_STEPS / tol)), 20, 20000))
+        n_p = int(np.clip(math.ceil((2.0 * _C_FV_CELLS / tol) ** 0.25), 50, 20000))
+        return {"n_p": n_p, "n_steps": n_steps}
+
+    def refine_cells(self, n_p: int, f: float) -> int:
+        return 2 * int(math.ceil(n_p * f**0.5 / 2))  # (fourth order in p)
+
+    def mol_growth(self, ratio: float) -> float:
+        return 1.5
+
+    def steps_limited(self, opts) -> int:
+        return max(opts.get("n_p") or 0, 0)
+
+
+_PLANS = {
+    frozenset(): _ClosedForm(),
+    frozenset({"general"}): _Plan(_C_GENERAL, "general Fokker-Planck coefficients", "always"),
+    frozenset({"moving_wall"}): _Plan(_C_FRONT, "a scale-dependent hardness", "wall"),
+    frozenset({"general", "moving_wall"}): _Plan(_C_GENERAL, "a scale-dependent hardness"),
+}
+"""The plan of each problem kind, keyed by what the problem needs beyond the closed forms (``features`` less a
+constant hardness, which the strip solves in closed form)."""
+
+
+def _plan_of(problem) -> _Plan:
+    return _PLANS[problem.features - {"hardness"}]
+
+
+def _errors(sol):
+    """(worst L1, worst area error, kind) of a Solution: against pf.exact, or the solver's own estimate."""
+    return _plan_of(sol.problem).errors(sol)
 
 
 def _min_engine_cells(problem, method, zeta_out, options) -> int:
@@ -96,18 +223,7 @@ def _min_engine_cells(problem, method, zeta_out, options) -> int:
 def _first_options(problem, method, tol, zeta_out=None, options=None):
     if method == "sines":
         return {"tol": min(max(tol * 1e-2, 1e-14), 1e-2)}
-    if not problem.has_closed_form:  # the front-fixed engine (fv, and mol's lines on the same fluxes)
-        C = _C_GENERAL if problem.general else _C_FRONT
-        n = 2 * int(np.clip(math.ceil(math.sqrt(C / tol) / 2), 25, 1600))  # even: the partner has n/2
-        n = max(n, _min_engine_cells(problem, method, zeta_out, options or {}))
-        if method == "mol":
-            return {"n_p": n, "rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
-        return {"n_p": n, "n_steps": n}
-    if method == "mol":
-        return {"rtol": min(max(tol * 1e-2, 1e-12), 1e-3)}
-    n_steps = int(np.clip(math.ceil(math.sqrt(2.0 * _C_FV_STEPS / tol)), 20, 20000))
-    n_p = int(np.clip(math.ceil((2.0 * _C_FV_CELLS / tol) ** 0.25), 50, 20000))
-    return {"n_p": n_p, "n_steps": n_steps}
+    return _plan_of(problem).first_options(problem, method, tol, zeta_out, options)
 
 
 def _refine(method, opts, problem, ratio):
@@ -117,12 +233,12 @@ def _refine(method, opts, problem, ratio):
         out["tol"] = max(opts["tol"] * 1e-2, 1e-15)
     elif method == "mol":
         out["rtol"] = max(opts["rtol"] * 1e-2, 1e-13)
-        f = 1.5 if problem.has_closed_form else float(np.clip(1.2 * math.sqrt(ratio), 1.5, 8.0))
+        f = _plan_of(problem).mol_growth(ratio)
         out["n_p"] = 2 * int(math.ceil(f * (opts.get("n_p") or 200) / 2))
     else:
         f = float(np.clip(1.2 * math.sqrt(ratio), 1.5, 8.0))  # second order in both (front-fixed) or in steps
         out["n_steps"] = 2 * int(math.ceil(opts["n_steps"] * f / 2))
-        out["n_p"] = 2 * int(math.ceil(opts["n_p"] * (f if not problem.has_closed_form else f**0.5) / 2))
+        out["n_p"] = _plan_of(problem).refine_cells(opts["n_p"], f)
     return out
 
 
@@ -201,7 +317,7 @@ def solve_to_tol(
 
 def _check_cells(method, tol, opts, problem, attempts, L1, area, kind) -> None:
     """SolverError when the next attempt would need more than MAX_CELLS cells or steps (refused before it runs)."""
-    if max(opts.get("n_p") or 0, 0 if problem.has_closed_form else opts.get("n_steps") or 0) > MAX_CELLS:
+    if _plan_of(problem).steps_limited(opts) > MAX_CELLS:
         best = attempts[-1]["options"] if attempts else opts
         raise SolverError(
             f"{method}: tol = {tol:g} would need more than {MAX_CELLS} cells/steps (best so far: L1 {L1:.3e}, area "
@@ -225,52 +341,19 @@ def solve_auto(problem, zeta_out=None, tol: float = 1e-6, *, max_memory=None, ma
     check_zeta_out(problem, zeta_out)
     check_budgets(max_memory, max_time)
     budget = {"max_memory": max_memory, "max_time": max_time}
-    if problem.has_closed_form:
-        why = (
-            "a closed form exists: the sine series is that solution summed to tol (spectral; the fastest method "
-            "at every tolerance measured in benchmarks/results)"
-        )
-        try:
-            return solve_to_tol(problem, "sines", zeta_out, tol, why=why, **budget)
-        except (ValueError, SolverError) as err:
-            why = f"the sine series could not serve this scene ({err}); finite volumes with a resolution for tol"
-            return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
-    declined, cheb_err = "", ""
-    if problem.general and not problem.moving_wall:  # (issue 21) the spectral engine, where it applies
-        try:
-            return _solve_chebyshev(problem, zeta_out, tol, budget)
-        except (ValueError, SolverError) as err:
-            declined = f"; method 'chebyshev' declined: {err}"
-    elif problem.moving_wall and not problem.general and problem.fudge.name == "none" and tol < _CHEB_WALL_TOL:
-        t_cheb = time.perf_counter()
-        capped = dict(budget)
-        capped["max_time"] = min(_CHEB_WALL_TIME, budget["max_time"] or math.inf)
-        try:
-            return _solve_chebyshev(problem, zeta_out, tol, capped)
-        except (ValueError, SolverError) as err:
-            declined, cheb_err = f"; method 'chebyshev' declined: {err}", str(err)
-            if max_time is not None:  # fv gets what the chebyshev attempt left of the caller's budget
-                budget["max_time"] = max_time - (time.perf_counter() - t_cheb)
-    what = "a scale-dependent hardness" if problem.moving_wall else "general Fokker-Planck coefficients"
-    why = (
-        f"no closed form ({what}): finite volumes on the front-fixed engine, n cells and n steps from the "
-        f"measured error model C/n^2, checked by a half-resolution partner run{declined}"
-    )
-    if max_time is not None and budget["max_time"] != max_time:
-        spent = max_time - budget["max_time"]
-        try:
-            if budget["max_time"] <= 0.0:
-                raise SolverError("no time left")
-            return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
-        except (ValueError, SolverError) as err:
-            if "max_time" not in str(err) and str(err) != "no time left":
-                raise
-            raise SolverError(
-                f"auto: tol = {tol:g} not met within max_time = {max_time:g} s: the chebyshev attempt took "
-                f"{spent:.3g} s and was declined ({cheb_err[:200]}), and fv then ran out of the rest "
-                f"({err}); ask for a looser tol or a larger max_time"
-            ) from None
-    return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+    return _plan_of(problem).solve(problem, zeta_out, tol, budget, max_time)
+
+
+_CHEB_PATHS = {
+    "moving-wall": "a moving yield wall, front-fixed (x = p / sigma_Y): Chebyshev collocation in x, an adaptive "
+    "exponential march in V",
+    **{
+        path: "general coefficients (path {path!r}): Chebyshev collocation in p, exact exponentials or an adaptive "
+        "exponential march in V"
+        for path in ("exponential", "clock", "magnus")
+    },
+}
+"""auto's words for each path of ``"chebyshev"`` (``sol.info["path"]``)."""
 
 
 def _solve_chebyshev(problem, zeta_out, tol, budget):
@@ -281,13 +364,7 @@ def _solve_chebyshev(problem, zeta_out, tol, budget):
     t0 = time.perf_counter()
     sol = get_solver("chebyshev")(problem, zeta_out=zeta_out, tol=min(tol, 1e-1), **budget).run()
     L1, area, kind = _errors(sol)
-    what = (
-        "a moving yield wall, front-fixed (x = p / sigma_Y): Chebyshev collocation in x, an adaptive exponential "
-        "march in V"
-        if problem.moving_wall
-        else f"general coefficients (path {sol.info['path']!r}): Chebyshev collocation in p, exact exponentials "
-        "or an adaptive exponential march in V"
-    )
+    what = _CHEB_PATHS[sol.info["path"]].format(path=sol.info["path"])
     sol.info["auto"] = {
         "method": "chebyshev",
         "why": f"{what}, degree, start and march refined until the estimate (3/4-degree and 4 V0 partners, the "
