@@ -63,16 +63,7 @@ class ExactSolution:
     def __init__(self, problem: ContactProblem, zeta: ArrayLike | None = None):
         if type(problem) is not ContactProblem:
             _check_problem(problem)
-        if problem.general:
-            raise ValueError(
-                "general Fokker-Planck coefficients (B1, B2) have no closed form; solve the problem numerically: "
-                "pf.solve(problem, method='fv') (or 'mol')"
-            )
-        if problem.moving_wall:
-            raise ValueError(
-                f"a scale-dependent hardness ({problem.hardness!r}) is a moving yield wall with no closed form; "
-                "solve it numerically: pf.solve(problem, method='fv') (or 'mol')"
-            )
+        problem.require_closed_form()  # (a moving yield wall or general coefficients: a ValueError naming which)
         self.problem = problem
         if zeta is None:
             # fast path (repeated questions at zeta_max): V(zeta_max) and tau(zeta_max) are cached on the

@@ -38,13 +38,7 @@ LEAK_METHODS = ("critical-junction", "effective-medium")
 def _check(problem):
     if not isinstance(problem, ContactProblem):
         raise ValueError(f"problem must be a persson_fp ContactProblem, got {type(problem).__name__}")
-    if problem.hardness is not None:
-        raise ValueError("the gap physics is the elastic theory's: a problem with a hardness is not covered")
-    if getattr(problem, "general", False):
-        raise ValueError(
-            "the gap physics is the elastic theory's: a FokkerPlanckProblem with general coefficients (B1, B2) is not "
-            "covered; use a ContactProblem"
-        )
+    problem.require_elastic("the gap physics")
 
 
 _RESOLVED: dict = {}

@@ -9,17 +9,19 @@ from __future__ import annotations
 
 import numpy as np
 
+from persson_fp.problems.contact import ContactProblem
 from persson_fp.theory.separation import MeanSeparation
 
 __all__ = ["mean_separation", "contact_stiffness"]
 
 
 def _elastic_only(problem) -> None:
-    if getattr(problem, "hardness", None) is not None or getattr(problem, "general", False):
-        raise ValueError(
-            "the mean separation of this module is the elastic theory's (Persson 2007); a problem with a hardness "
-            "or general coefficients is not covered (use separation_from_areas with a numerical solution's areas)"
-        )
+    if not isinstance(problem, ContactProblem):
+        raise ValueError(f"problem must be a persson_fp ContactProblem, got {type(problem).__name__}")
+    problem.require_elastic(
+        "the mean separation of Persson (2007)",
+        " (use separation_from_areas with a numerical solution's areas)",
+    )
 
 
 def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:

@@ -372,6 +372,18 @@ class ContactProblem:
         """True for a scale-dependent hardness (a yield wall that moves with zeta: no closed form)."""
         return self.upper_wall.moves
 
+    def require_closed_form(self, remedy: str = "solve it numerically: pf.solve(problem, method='fv') (or 'mol')"):
+        """Raise ``ValueError`` (naming why, ending in ``remedy``) unless :func:`persson_fp.exact` solves this problem:
+        a moving yield wall or general coefficients leave no closed form; the walls and coefficients say so."""
+        for wall in self.walls:
+            wall.require_closed_form(remedy)
+
+    def require_elastic(self, what: str, remedy: str = "") -> None:
+        """Raise ``ValueError`` unless ``what`` (a theory of purely elastic contact, e.g. "the gap physics") covers
+        this problem: no yield wall, the homogenised coefficients; ``remedy`` (e.g. "; use ...") ends the message."""
+        for wall in self.walls:
+            wall.require_elastic(what, remedy)
+
     def sigma_Y(self, zeta=None) -> np.ndarray:
         """Hardness sigma_Y at magnification(s) ``zeta``.
 

@@ -98,6 +98,18 @@ class FokkerPlanckProblem(ContactProblem):
     def features(self) -> frozenset:
         return super().features | {"general"}
 
+    def require_closed_form(
+        self, remedy: str = "solve the problem numerically: pf.solve(problem, method='fv') (or 'mol')"
+    ):
+        raise ValueError(f"general Fokker-Planck coefficients (B1, B2) have no closed form; {remedy}")
+
+    def require_elastic(self, what: str, remedy: str = "; use a ContactProblem") -> None:
+        super().require_elastic(what, remedy)
+        raise ValueError(
+            f"{what} is the elastic theory's: a FokkerPlanckProblem with general coefficients (B1, B2) is not "
+            f"covered{remedy}"
+        )
+
     def with_loads(self, p_bar) -> FokkerPlanckProblem:
         """The same surface, coefficients and hardness with other load(s).
 

@@ -45,6 +45,9 @@ class Wall:
 
     feature: str | None = None
     moves: bool = False
+    mass_back: float = 0.0
+    """The fraction of its absorbed mass the wall hands back into the domain as it moves (1 for a moving yield wall,
+    whose plastic area sits at the wall and re-enters as sigma_Y grows; 0 for a fixed one)."""
     hardness = None
     description: str = "a wall"
 
@@ -93,6 +96,11 @@ class Wall:
         """The part of what the far end absorbed that is a numerical loss (zeros at a physical wall)."""
         return absorbed
 
+    def solution_areas(self, zeta, elastic_area, plastic_area):
+        """``(sigma_Y, A_pl, A*)`` of a solution with the elastic area ``elastic_area`` (n_zeta, n_loads) at the
+        stations ``zeta`` and the absorbed ``plastic_area`` (or None): no wall, no plastic area, A* = A_el."""
+        return None, None, elastic_area
+
     def strip_sigma(self):
         """The constant yield stress that bounds the strip (pressure), None without a yield wall."""
         return None
@@ -119,6 +127,13 @@ class Wall:
     def repr_part(self) -> str:
         """What ``ContactProblem.__repr__`` adds for this wall."""
         return ""
+
+    def require_closed_form(self, remedy: str) -> None:
+        """Raise ``ValueError`` (ending in ``remedy``) where this wall leaves no closed form (a moving wall)."""
+
+    def require_elastic(self, what: str, remedy: str = "") -> None:
+        """Raise ``ValueError`` where ``what`` (a theory of the purely elastic contact) does not cover this wall;
+        ``remedy``: what to do instead (appended)."""
 
 
 class AbsorbingWall(Wall):
@@ -185,6 +200,13 @@ class YieldWall(Wall):
     def strip_sigma(self):
         return float(self.hardness.sigma(1.0))
 
+    def solution_areas(self, zeta, elastic_area, plastic_area):
+        sigma_Y = np.atleast_1d(self.hardness.sigma(zeta)).astype(float)
+        if plastic_area is None:
+            plastic_area = np.zeros_like(elastic_area)
+        plastic_area = np.asarray(plastic_area, dtype=float).reshape(elastic_area.shape)
+        return sigma_Y, plastic_area, elastic_area + plastic_area
+
     def plastic_from_load(self, p_bar, elastic_load):
         # (clipped at 0: the quadrature error of F_el may push a vanishing A_pl a little below)
         return np.maximum((p_bar - elastic_load) / self.sigma_1, 0.0)
@@ -208,12 +230,16 @@ class YieldWall(Wall):
     def repr_part(self) -> str:
         return f", hardness={self.hardness!r}"
 
+    def require_elastic(self, what: str, remedy: str = "") -> None:
+        raise ValueError(f"{what} is the elastic theory's: a problem with a hardness is not covered{remedy}")
+
 
 class MovingYieldWall(YieldWall):
     """A scale-dependent yield stress sigma_Y(zeta): a moving wall, no closed form (the PDE solvers solve it)."""
 
     feature = "moving_wall"
     moves = True
+    mass_back = 1.0
     description = "a scale-dependent hardness (moving yield wall)"
 
     def p_max(self, problem, k: float) -> float:
@@ -221,6 +247,11 @@ class MovingYieldWall(YieldWall):
 
     def tau_scale(self, problem) -> float:
         return problem.V_max
+
+    def require_closed_form(self, remedy: str) -> None:
+        raise ValueError(
+            f"a scale-dependent hardness ({self.hardness!r}) is a moving yield wall with no closed form; {remedy}"
+        )
 
     def tau_map(self, problem):
         raise ValueError(

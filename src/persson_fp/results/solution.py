@@ -260,13 +260,8 @@ class Solution:
         if contact_area is None:
             contact_area = np.sum(P0 * _station_axis(weights), axis=-1)
         contact_area = np.asarray(contact_area, dtype=float).reshape(n_z, n_l)
-        sigma_Y = None
-        if problem.hardness is not None:
-            sigma_Y = np.atleast_1d(problem.hardness.sigma(zeta)).astype(float)
-            if plastic_area is None:
-                plastic_area = np.zeros_like(contact_area)
-            plastic_area = np.asarray(plastic_area, dtype=float).reshape(n_z, n_l)
-            contact_area = contact_area + plastic_area
+        # the yield wall's stress and plastic area (A* = A_el + A_pl); None, None and A_el without one
+        sigma_Y, plastic_area, contact_area = problem.upper_wall.solution_areas(zeta, contact_area, plastic_area)
         # every field set at once (what the frozen dataclass's __init__ does one object.__setattr__ at a time)
         sol = object.__new__(cls)
         sol.__dict__.update(
@@ -449,12 +444,10 @@ class Solution:
             The problem has no closed form (a scale-dependent hardness or general coefficients); the
             message points to ``info["error_estimate"]``, the solver's own estimate.
         """
-        if not self.problem.has_closed_form:
-            raise ValueError(
-                "compare(): this problem (a scale-dependent hardness or general coefficients) has no exact "
-                "solution to compare with; the solver's own "
-                "error estimate is in info['error_estimate'] (and the conservation residuals in info['checks'])"
-            )
+        self.problem.require_closed_form(
+            "compare() has no exact solution to compare with; the solver's own error estimate is in "
+            "info['error_estimate'] (and the conservation residuals in info['checks'])"
+        )
         return compare_with_exact(self, exact(self.problem, self._exact_zeta()))
 
     @property

@@ -85,15 +85,18 @@ def supporters_hint(feature: str) -> str:
 def load_handlers(problem) -> str:
     """Which methods handle a load that another method refuses: the closed forms where the problem has one,
     else chebyshev (the spectral method, accurate at any load)."""
-    beyond = problem.features - {"hardness"}  # what the closed forms do not cover
-    if not beyond:
-        return LOAD_HANDLERS
-    return "method 'chebyshev' handles it " + (
-        "(general coefficients)" if "general" in beyond else "without a fudge factor"
-    )
+    return _LOAD_HANDLERS_OF[problem.features - {"hardness"}]  # (keyed by what the closed forms do not cover)
 
 
 LOAD_HANDLERS = "method 'sines' (p_bar / sqrt(tau) up to about 2e3) or the closed form pf.exact (any load) handle it"
+_LOAD_HANDLERS_OF = {
+    frozenset(): LOAD_HANDLERS,
+    frozenset({"moving_wall"}): "method 'chebyshev' handles it without a fudge factor",
+    frozenset({"general"}): "method 'chebyshev' handles it (general coefficients)",
+    frozenset({"general", "moving_wall"}): "method 'chebyshev' handles it (general coefficients)",
+}
+"""The hint of a refused load, by what the problem needs beyond the closed forms (``features`` less a constant
+hardness)."""
 
 MEMORY_BUDGET = 4 * 2**30
 """Default ``max_memory`` (bytes) of a solve: 4 GiB.  Override per call, ``pf.solve(..., max_memory=...)``."""

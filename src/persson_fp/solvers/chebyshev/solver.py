@@ -355,7 +355,7 @@ class ChebyshevSolver(Solver):
 
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
-        if pr.moving_wall:
+        if self.path == "moving-wall":  # (chosen in validate)
             return solve_moving_wall(pr, o, self.zeta_out, self.V_out, self.max_time, self.max_memory)
         tol = o["tol"]
         doms = []

@@ -104,14 +104,14 @@ def solve_lines(
 
     load0 = mw.load(V0, y0w)
     y0 = np.concatenate([y0w, A_non0[:, None], np.zeros((m, 1))], axis=1).ravel()
-    returns = pr.moving_wall  # a moving yield wall hands its plastic area back; elsewhere A_pl stays absorbed
+    back = pr.upper_wall.mass_back  # a moving yield wall hands its plastic area back (1); elsewhere it stays (0)
     mass0 = np.maximum(y0w[:, :n].sum(axis=1) * h + y0w[:, n], np.finfo(float).tiny)  # in play at V0, per load
     if per_mass:
         atol = np.repeat(atol * mass0, k)
 
     def remaining(V, y):  # the mass that can still reach a station, relative, above the drained level (an event)
         Y = y.reshape(m, k)
-        M = Y[:, :n].sum(axis=1) * h + (Y[:, n] if returns else 0.0)
+        M = Y[:, :n].sum(axis=1) * h + back * Y[:, n]
         return float(np.max(M / mass0)) - drained
 
     remaining.terminal, remaining.direction = True, -1.0
@@ -137,10 +137,9 @@ def solve_lines(
         Y[:got] = np.asarray(res.y).T.reshape(got, m, k)
     if got < V_st.size:  # drained (the event): every later area is below drained x mass0 (mass only leaves)
         y_end = res.y_events[0][-1].reshape(m, k).copy()
-        y_end[:, n + 1] += y_end[:, :n].sum(axis=1) * h + (y_end[:, n] if returns else 0.0)  # to the wall p = 0
+        y_end[:, n + 1] += y_end[:, :n].sum(axis=1) * h + back * y_end[:, n]  # to the wall p = 0
         y_end[:, :n] = 0.0
-        if returns:
-            y_end[:, n] = 0.0
+        y_end[:, n] *= 1.0 - back  # (what the wall hands back went to p = 0 too)
         Y[got:] = y_end
     s_st = mw.wall_many(V_st)[0]
     W = Y[:, :, :n]
