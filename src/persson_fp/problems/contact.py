@@ -19,6 +19,7 @@ from persson_fp.surfaces.psd import PSD, SelfAffinePSD
 from persson_fp.theory import fudge as _fudge
 from persson_fp.theory import hardness as _hardness
 from persson_fp.theory.effective import effective_variance
+from persson_fp.theory.response import ElasticHalfSpace
 from persson_fp.theory.strip import StripEffectiveVariance
 
 if TYPE_CHECKING:
@@ -90,6 +91,7 @@ class ContactProblem:
             raise ValueError(f"psd must be a SelfAffinePSD or TabulatedPSD, got {type(psd).__name__}")
         self.psd = psd
         self.E_star = as_positive_scalar(E_star, "E_star")
+        self.response = ElasticHalfSpace(self.E_star)  # the solid's answer to the roughness: V, dV/dzeta, energy
         pb = _check_loads(p_bar)
         self.scalar_load = pb.ndim == 0
         self.p_bar = np.atleast_1d(pb).astype(float)
@@ -100,7 +102,7 @@ class ContactProblem:
             self.hardness.check(self.psd.zeta_max, float(np.max(self.p_bar)))
         self._strip_ev = None  # StripEffectiveVariance, on first use (constant hardness with a fudge factor)
         with np.errstate(over="ignore", under="ignore"):
-            self._V_max = float(self.psd.V(None, self.E_star))
+            self._V_max = float(self.response.V(self.psd))
         if not (np.isfinite(self._V_max) and self._V_max > 0):  # V = E*^2 <|grad h|^2> / 4 out of range
             raise ValueError(
                 f"E_star = {self.E_star!r} and the spectrum give V(zeta_max) = {self._V_max!r}, outside floating-point "
@@ -232,7 +234,7 @@ class ContactProblem:
         """
         if zeta is None:
             return np.array(self._V_max)
-        return self.psd.V(zeta, self.E_star)
+        return self.response.V(self.psd, zeta)
 
     @property
     def V_max(self) -> float:
@@ -269,7 +271,7 @@ class ContactProblem:
         ValueError
             ``zeta`` not finite or outside [1, zeta_max].
         """
-        return self.psd.dV_dzeta(zeta, self.E_star)
+        return self.response.dV_dzeta(self.psd, zeta)
 
     def tau_of_V(self, V: ArrayLike) -> np.ndarray:
         """Effective variance tau at complete-contact variance(s) ``V``, for every load.
