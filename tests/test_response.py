@@ -102,6 +102,7 @@ def test_V_is_the_integral_of_the_spectrum(psd, E, x):
     r = ElasticHalfSpace(E)
     zeta = psd.zeta_max**x
     V = float(r.V(psd, zeta))
+    assert V == float(psd.V(zeta, E))  # bit for bit the spectrum's closed form
     assert V == pytest.approx(V_oracle(psd, zeta, E), rel=1e-8, abs=0.0)
     assert float(r.V(psd)) == pytest.approx(V_oracle(psd, psd.zeta_max, E), rel=1e-8)
     # V ~ E*^2
@@ -122,6 +123,7 @@ def test_dV_dzeta_is_the_slope_of_V(psd, E, x):
     h = 1e-5 * zeta
     fd = (float(r.V(psd, zeta + h)) - float(r.V(psd, zeta - h))) / (2.0 * h)
     d = float(r.dV_dzeta(psd, zeta))
+    assert d == float(psd.dV_dzeta(zeta, E)) == float(r.dV_dzeta(psd, np.array([zeta]))[0])  # bit for bit
     assert d == pytest.approx(fd, rel=1e-6)
     assert float(r.dV_dzeta_unchecked(psd, zeta)) == pytest.approx(d, rel=1e-14)
 

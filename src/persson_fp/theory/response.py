@@ -19,14 +19,14 @@ naming the quantity asked (a sliding viscoelastic solid has V but no stored elas
 plane-strain modulus :math:`E/(1-\nu^2)`, so :math:`V = \frac{\pi}{2}E^{*2}\int q^3C\,dq` (``eq:VV_relation``)
 and :math:`M(q) = 2/(E^* q)`.
 
-This module imports only numpy and :mod:`persson_fp.surfaces`.
+This module imports only numpy (the spectrum arrives as an argument).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from persson_fp._validate import as_float_array, as_positive_scalar
+from persson_fp._validate import as_float_array, as_positive_scalar, check_in_range
 
 __all__ = ["ElasticResponse", "ElasticHalfSpace"]
 
@@ -236,7 +236,8 @@ class ElasticHalfSpace(ElasticResponse):
                \frac{dV}{d\zeta} = \frac{\pi}{2}E^{*2} q_l q^3 C(q)\big|_{q=\zeta q_l}, \quad
                M(q) = \frac{2}{E^* q}, \quad \frac{U_{el}}{A_n} = \frac{\pi}{2}E^*\int q^2C\,dq.
 
-    The spectrum's closed forms compute them (:meth:`persson_fp.PSD.V` and its kin).
+    The spectrum's closed forms compute them (the moments of :meth:`persson_fp.PSD.moment_unchecked`, the inverse
+    :meth:`persson_fp.PSD.zeta_of_V`): the numbers are those of :meth:`persson_fp.PSD.V` and its kin, bit for bit.
 
     Parameters
     ----------
@@ -285,8 +286,17 @@ class ElasticHalfSpace(ElasticResponse):
         -------
         numpy.ndarray, pressure^2
             V at each ``zeta``.
+
+        Raises
+        ------
+        ValueError
+            ``zeta`` not finite or outside ``[1, zeta_max]``.
         """
-        return psd.V(zeta, self.E_star)
+        # the arithmetic of persson_fp.PSD.V, one call less on the stack (a solver's set-up asks it)
+        E_star = np.float64(self.E_star)
+        m = psd.moment_unchecked(3, psd.zeta_max if zeta is None else check_in_range(zeta, "zeta", 1.0, psd.zeta_max))
+        with np.errstate(over="ignore"):  # out of range -> inf (ContactProblem refuses it), never OverflowError
+            return 0.25 * E_star**2 * (2.0 * np.pi * m)
 
     def dV_dzeta(self, psd, zeta=None) -> np.ndarray:
         r""":math:`dV/d\zeta = \frac{\pi}{2}E^{*2} q_l q^3 C(q)` at :math:`q = \zeta q_l` (``eq:dVdxi``).
@@ -302,8 +312,19 @@ class ElasticHalfSpace(ElasticResponse):
         -------
         numpy.ndarray, pressure^2
             dV/dzeta at each ``zeta``.
+
+        Raises
+        ------
+        ValueError
+            ``zeta`` not finite or outside ``[1, zeta_max]``.
         """
-        return psd.dV_dzeta(zeta, self.E_star)
+        # the arithmetic of persson_fp.PSD.dV_dzeta, one call less on the stack (a coefficient B2 asks it every step)
+        E_star = self.E_star
+        if type(zeta) is float and 1.0 - 1e-12 <= zeta <= psd.zeta_max * (1.0 + 1e-12):  # no array round trip
+            q = np.float64(min(max(zeta, 1.0), psd.zeta_max) * psd.q_l)
+            return 0.5 * np.pi * E_star**2 * psd.q_l * q**3 * psd.C(float(q))
+        z = psd.zeta_max if zeta is None else check_in_range(zeta, "zeta", 1.0, psd.zeta_max)
+        return psd.dV_dzeta_unchecked(z, E_star)
 
     def dV_dzeta_unchecked(self, psd, z) -> np.ndarray:
         """:meth:`dV_dzeta` at magnifications already checked (the spectrum's unchecked kernel).
