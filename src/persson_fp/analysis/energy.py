@@ -61,7 +61,10 @@ def pressure_spectrum(problem: ContactProblem, q: ArrayLike, A_n: float = 1.0) -
     tau = problem.tau(z)
     A = area_from_tau(problem.p_bar, tau)
     S = problem.fudge.S(A)
-    out = (problem.E_star / (4.0 * np.pi)) ** 2 * A_n * (q**2 * psd.C(q))[..., None] * A * S
+    E_eff = problem.response.effective_modulus(q, needed_for="the pressure spectrum")  # E* on the half-space
+    if np.ndim(E_eff) != 0:
+        E_eff = np.asarray(E_eff)[..., None]
+    out = (E_eff / (4.0 * np.pi)) ** 2 * A_n * (q**2 * psd.C(q))[..., None] * A * S
     return out[..., 0] if problem.scalar_load else out
 
 
@@ -100,6 +103,10 @@ def elastic_energy(problem: ContactProblem, zeta: float | None = None, epsrel: f
     """
     _check_problem(problem)
     psd = problem.psd
+    response = problem.response
+    # E_eff(q) (E* on the half-space): a float where it does not depend on q (out of the integral), else inside
+    E_eff = response.effective_modulus(np.array([psd.q_l, psd.q_s]), needed_for="the elastic energy")
+    scaled = np.ndim(E_eff) != 0
     try:
         epsrel = float(epsrel)
     except (TypeError, ValueError):
@@ -118,7 +125,8 @@ def elastic_energy(problem: ContactProblem, zeta: float | None = None, epsrel: f
         q = np.exp(t)
         z = min(max(q / psd.q_l, 1.0), psd.zeta_max)
         A = area_from_tau(problem.p_bar, problem.tau(np.array(z)))
-        return q**3 * psd.C(q) * A * problem.fudge.S(A)
+        f = q**3 * psd.C(q) * A * problem.fudge.S(A)
+        return f * response.effective_modulus(q) if scaled else f
 
     pts = []
     q_r = getattr(psd, "q_r", None)
@@ -127,5 +135,5 @@ def elastic_energy(problem: ContactProblem, zeta: float | None = None, epsrel: f
     if hasattr(psd, "q"):  # tabulated: the kinks of the interpolant
         pts.extend(np.log(psd.q[(psd.q > np.exp(lo)) & (psd.q < np.exp(hi))]).tolist())
     val, _err = quad_vec(integrand, lo, hi, epsrel=epsrel, epsabs=0.0, points=pts or None, limit=2000)
-    out = 0.5 * np.pi * problem.E_star * np.asarray(val)
+    out = 0.5 * np.pi * (1.0 if scaled else E_eff) * np.asarray(val)
     return out[0] if problem.scalar_load else out

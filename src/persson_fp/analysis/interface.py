@@ -45,8 +45,9 @@ _RESOLVED: dict = {}
 
 
 def _resolved(problem, weighting):
-    # spectra are immutable values: the rule built for one (spectrum, E*, model, weighting) serves every call
-    key = (problem.psd, problem.E_star, problem.fudge, weighting)
+    # spectra and responses are immutable values: the rule built for one (spectrum, response, model, weighting)
+    # serves every call
+    key = (problem.psd, problem.response, problem.fudge, weighting)
     try:
         return _RESOLVED[key]
     except (KeyError, TypeError):

@@ -17,6 +17,7 @@ from persson_fp.problems import walls as _walls
 from persson_fp.problems.loads import _check_loads, _warn_unit_slip
 from persson_fp.surfaces.psd import PSD, SelfAffinePSD
 from persson_fp.theory import fudge as _fudge
+from persson_fp.theory.response import ElasticHalfSpace
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -87,6 +88,7 @@ class ContactProblem:
             raise ValueError(f"psd must be a SelfAffinePSD or TabulatedPSD, got {type(psd).__name__}")
         self.psd = psd
         self.E_star = as_positive_scalar(E_star, "E_star")
+        self.response = ElasticHalfSpace(self.E_star)  # the solid's answer to the roughness: V, dV/dzeta, energy
         pb = _check_loads(p_bar)
         self.scalar_load = pb.ndim == 0
         self.p_bar = np.atleast_1d(pb).astype(float)
@@ -99,7 +101,7 @@ class ContactProblem:
         self.upper_wall.check(self.psd.zeta_max, float(np.max(self.p_bar)))
         self._tau_map = None  # the fudge factor's effective-variance map (the upper wall's), on first use
         with np.errstate(over="ignore", under="ignore"):
-            self._V_max = float(self.psd.V(None, self.E_star))
+            self._V_max = float(self.response.V(self.psd))
         if not (np.isfinite(self._V_max) and self._V_max > 0):  # V = E*^2 <|grad h|^2> / 4 out of range
             raise ValueError(
                 f"E_star = {self.E_star!r} and the spectrum give V(zeta_max) = {self._V_max!r}, outside floating-point "
@@ -228,7 +230,7 @@ class ContactProblem:
         """
         if zeta is None:
             return np.array(self._V_max)
-        return self.psd.V(zeta, self.E_star)
+        return self.response.V(self.psd, zeta)
 
     @property
     def V_max(self) -> float:
@@ -265,7 +267,7 @@ class ContactProblem:
         ValueError
             ``zeta`` not finite or outside [1, zeta_max].
         """
-        return self.psd.dV_dzeta(zeta, self.E_star)
+        return self.response.dV_dzeta(self.psd, zeta)
 
     def tau_of_V(self, V: ArrayLike) -> np.ndarray:
         """Effective variance tau at complete-contact variance(s) ``V``, for every load.
@@ -373,14 +375,49 @@ class ContactProblem:
         return self.upper_wall.moves
 
     def require_closed_form(self, remedy: str = "solve it numerically: pf.solve(problem, method='fv') (or 'mol')"):
-        """Raise ``ValueError`` (naming why, ending in ``remedy``) unless :func:`persson_fp.exact` solves this problem:
-        a moving yield wall or general coefficients leave no closed form; the walls and coefficients say so."""
+        """Refuse unless :func:`persson_fp.exact` solves this problem.
+
+        A moving yield wall or general coefficients leave no closed form; the walls
+        (:mod:`persson_fp.problems.walls`) and the coefficients say so, each in its own words.
+
+        Parameters
+        ----------
+        remedy : str
+            What to do instead; ends the message.
+
+        Returns
+        -------
+        None
+            Where a closed form exists.
+
+        Raises
+        ------
+        ValueError
+            Naming what leaves no closed form (the scale-dependent hardness, or general coefficients B1, B2).
+        """
         for wall in self.walls:
             wall.require_closed_form(remedy)
 
     def require_elastic(self, what: str, remedy: str = "") -> None:
-        """Raise ``ValueError`` unless ``what`` (a theory of purely elastic contact, e.g. "the gap physics") covers
-        this problem: no yield wall, the homogenised coefficients; ``remedy`` (e.g. "; use ...") ends the message."""
+        """Refuse unless a theory of purely elastic contact covers this problem (no yield wall, Persson's coefficients).
+
+        Parameters
+        ----------
+        what : str
+            The theory, for the message (e.g. ``"the gap physics"``).
+        remedy : str
+            What to do instead (e.g. ``"; use a ContactProblem"``); ends the message.
+
+        Returns
+        -------
+        None
+            Where the elastic theory covers the problem.
+
+        Raises
+        ------
+        ValueError
+            A hardness, or general coefficients, naming ``what`` and which one.
+        """
         for wall in self.walls:
             wall.require_elastic(what, remedy)
 

@@ -44,6 +44,7 @@ import numpy as np
 from scipy.special import erfcx, log_ndtr, ndtr
 
 from persson_fp._validate import as_positive_scalar
+from persson_fp.theory.response import ElasticHalfSpace
 
 __all__ = [
     "Interaction",
@@ -324,7 +325,7 @@ def persson_tosatti(psd, E_star, w) -> dict:
     """
     E_star = as_positive_scalar(E_star, "E_star")
     w = as_positive_scalar(w, "w")
-    U = float(psd.elastic_energy_complete(E_star=E_star))
+    U = float(ElasticHalfSpace(E_star).elastic_energy_complete(psd, needed_for="the Persson-Tosatti stickiness"))
     lam = 1.0 / float(psd.grad2())
     ratio = 1.0 + 0.5 * np.sqrt(np.pi / lam) * erfcx(np.sqrt(lam))
     w_eff = w * ratio - U

@@ -13,8 +13,10 @@ spectrum, whose complete-contact variance at :math:`q` is :math:`V(q) - V(\zeta)
 .. math::  \bar u(\zeta) = \frac{2}{E^*}\int_0^{\Sigma(\zeta)} \frac{g\big(\bar p/(A(\zeta)\sigma)\big)}{q(\sigma)}\,
            d\sigma, \qquad \Sigma(\zeta) = \sqrt{V(\zeta_{max}) - V(\zeta)},
 
-with the universal function g of :mod:`persson_fp.theory.separation`.  The area lost between :math:`\zeta` and
-:math:`\zeta + d\zeta`, :math:`-A'd\zeta`, has the mean gap (Lorenz & Persson)
+with the universal function g of :mod:`persson_fp.theory.separation`; :math:`2/(E^* q)` is the half-space's
+surface compliance :math:`M(q)`, and V, its inverse and M come from the solid's response
+(:class:`~persson_fp.theory.response.ElasticHalfSpace`, the attribute ``response``).  The area lost between
+:math:`\zeta` and :math:`\zeta + d\zeta`, :math:`-A'd\zeta`, has the mean gap (Lorenz & Persson)
 :math:`u_1(\zeta) = \bar u + \bar u' A/A' = d(A\bar u)/dA`.
 
 Checked here (the formula for :math:`\bar u(\zeta)` is reconstructed from the papers' statements, not copied):
@@ -37,6 +39,7 @@ from persson_fp._validate import as_positive_scalar
 from persson_fp.surfaces.psd import PSD
 from persson_fp.theory import fudge as _fudge
 from persson_fp.theory.effective import effective_variance
+from persson_fp.theory.response import ElasticHalfSpace
 from persson_fp.theory.separation import WEIGHTINGS
 from persson_fp.theory.separation_weight import _weight
 
@@ -93,11 +96,12 @@ class MagnificationResolved:
             raise ValueError(f"weighting must be one of {list(WEIGHTINGS)}, got {weighting!r}")
         self.psd = psd
         self.E_star = as_positive_scalar(E_star, "E_star")
+        self.response = ElasticHalfSpace(self.E_star)
         self.fudge = _fudge.resolve(fudge)
         self.weighting = weighting
         self._w = _weight(self.fudge, weighting)
         self._ev = effective_variance(self.fudge)
-        self.V_max = float(psd.V(E_star=self.E_star))
+        self.V_max = float(self.response.V(psd))
         self.h2_max = float(psd.h2())
         self._y_cut = _Y_CUT * np.sqrt(max(float(self.fudge.S(np.array(1.0))), 1.0))
         # ln g on a fine uniform table in ln y, interpolated linearly (error ~1e-6 relative in g where it matters;
@@ -110,9 +114,9 @@ class MagnificationResolved:
         # ~1e-7 relative in q); in the few cells that hold a kink of q(V) (the roll-off, a tabulated spectrum's
         # knots) the interpolation runs to the kink's exact point from either side
         self._kinks = _kinks(psd)
-        self._V_k = np.asarray(psd.V(self._kinks / psd.q_l, self.E_star), dtype=float).reshape(-1)
+        self._V_k = np.asarray(self.response.V(psd, self._kinks / psd.q_l), dtype=float).reshape(-1)
         self._lnV = np.linspace(np.log(self.V_max) - 46.0, np.log(self.V_max), 1 << (13 if self._V_k.size <= 2 else 16))
-        self._lnq = np.log(psd.zeta_of_V(np.exp(self._lnV), self.E_star) * psd.q_l)
+        self._lnq = np.log(self.response.zeta_of_V(psd, np.exp(self._lnV)) * psd.q_l)
         self._dlnq = np.append(np.diff(self._lnq), 0.0)
         self._dV_inv = 1.0 / (self._lnV[1] - self._lnV[0])
         self._kink_cell = np.zeros(self._lnV.size, dtype=bool)
@@ -148,7 +152,7 @@ class MagnificationResolved:
             A in [0, 1].
         """
         p = np.asarray(p_bar, dtype=float)
-        V = self.psd.V(self.psd.check_zeta(zeta), self.E_star)
+        V = self.response.V(self.psd, self.psd.check_zeta(zeta))
         tau = self._ev.tau(p, V)
         with np.errstate(divide="ignore"):
             return np.where(tau > 0, erf(p / np.sqrt(2.0 * np.where(tau > 0, tau, 1.0))), 1.0)
@@ -172,7 +176,7 @@ class MagnificationResolved:
         A = np.clip(np.asarray(A, dtype=float), 1e-300, 1.0 - 1e-16)
         tau = p * p / (2.0 * erfinv(A) ** 2)
         V = self._ev.V_of_tau(p, tau)
-        return self.psd.zeta_of_V(np.minimum(V, self.V_max), self.E_star)
+        return self.response.zeta_of_V(self.psd, np.minimum(V, self.V_max))
 
     def h(self, zeta) -> np.ndarray:
         r"""Rms height of the roughness finer than ζ, :math:`h_\zeta = (2\pi\int_{\zeta q_l}^{q_s} qC\,dq)^{1/2}`.
@@ -217,7 +221,7 @@ class MagnificationResolved:
         shape = p.shape
         p, z, A = p.ravel(), z.ravel(), A.ravel()
         out = np.zeros(p.size)
-        V_z = self.psd.V(self.psd.check_zeta(z), self.E_star)
+        V_z = self.response.V(self.psd, self.psd.check_zeta(z))
         rest = np.maximum(self.V_max - V_z, 0.0)
         with np.errstate(divide="ignore"):
             p_loc = p / np.maximum(A, 1e-300)
@@ -265,8 +269,13 @@ class MagnificationResolved:
             low = t < self._t[0]  # y < 1e-9: g is logarithmic there (the separation module's small-y law)
             if np.any(low):
                 g[low] = self._w.g(np.exp(t[low]))
+            # the surface compliance M(q) = 2 / (E_eff(q) q): 2 / (E* q) on the half-space
+            E_eff = self.response.effective_modulus(q, needed_for="the magnification-resolved separation")
             f = g * sigma / q
-            out[k] = (2.0 / self.E_star) * np.sum(f * wts, axis=1)
+            if np.ndim(E_eff) == 0:  # a modulus without scale (the half-space): out of the sum
+                out[k] = (2.0 / E_eff) * np.sum(f * wts, axis=1)
+            else:
+                out[k] = np.sum((2.0 / E_eff) * f * wts, axis=1)
         return out.reshape(shape)
 
     def u1(self, p_bar, zeta, dA: float = 1e-3) -> np.ndarray:

@@ -30,10 +30,11 @@ the forms computed here,
 
 with the universal :math:`g(y) = \int_y^\infty \omega'(t)/t\,dt` (for the plain theory
 :math:`g = \tfrac{1}{\sqrt{2\pi}}E_1(y^2/2)`, Persson 2007).  :math:`q(\sigma)` is the spectrum's exact
-inverse of V (:meth:`persson_fp.PSD.zeta_of_V`).  g is tabulated once per model (a cubic Hermite table of
-ln g in ln y with exact slopes; g below 1e-190 of its light-load values, :math:`\bar p > 30\sqrt{V S(1)}`, is
-returned as 0), the integral in :math:`\ln\sigma` is a fixed Gauss-Legendre rule split at the
-spectrum's kinks, so every load costs one dot product.
+inverse of V (:meth:`persson_fp.PSD.zeta_of_V`, asked through the solid's response,
+:mod:`persson_fp.theory.response`); :math:`2/(E^* q)` is the half-space's surface compliance :math:`M(q)`.
+g is tabulated once per model (a cubic Hermite table of ln g in ln y with exact slopes; g below 1e-190 of its
+light-load values, :math:`\bar p > 30\sqrt{V S(1)}`, is returned as 0), the integral in :math:`\ln\sigma` is a
+fixed Gauss-Legendre rule split at the spectrum's kinks, so every load costs one dot product.
 
 Small loads: :math:`\bar u \approx u_0 \ln(\beta E^*/\bar p)` (Persson 2007's
 :math:`\bar p \approx \beta E^* e^{-\bar u/u_0}`) with
@@ -50,6 +51,7 @@ import numpy as np
 from persson_fp._validate import as_float_array, as_positive_scalar
 from persson_fp.surfaces.psd import PSD
 from persson_fp.theory import fudge as _fudge
+from persson_fp.theory.response import ElasticHalfSpace
 from persson_fp.theory.separation_weight import _GL_W, _GL_X, _weight
 
 __all__ = ["WEIGHTINGS", "MeanSeparation", "separation_from_areas"]
@@ -103,6 +105,8 @@ class MeanSeparation:
       :math:`\bar p \approx \beta E^* e^{-\bar u/u_0}` (also :meth:`small_load_law`).
     - ``sigma_max`` (pressure): :math:`\sqrt{V}` at the top magnification :math:`q_s/q_l`.
     - ``psd``, ``E_star``, ``fudge`` (the resolved fudge-factor object), ``weighting``: the inputs.
+    - ``response``: the solid's response, :class:`~persson_fp.theory.response.ElasticHalfSpace` of ``E_star``, which
+      gives V, its inverse and the surface compliance :math:`M(q) = 2/(E^* q)`.
     """
 
     def __init__(
@@ -127,11 +131,13 @@ class MeanSeparation:
             raise ValueError(f"decades must be >= 4, got {decades!r}")
         self.psd = psd
         self.E_star = as_positive_scalar(E_star, "E_star")
+        self.response = ElasticHalfSpace(self.E_star)
         self.fudge = _fudge.resolve(fudge)
         self.weighting = weighting
         self._w = _weight(self.fudge, weighting)
+        response = self.response
         with np.errstate(over="ignore", under="ignore"):
-            V_max = float(psd.V(E_star=self.E_star))
+            V_max = float(response.V(psd))
         if not (np.isfinite(V_max) and V_max > 1e-280):  # sigma reaches sqrt(V) 1e-14 (decades)
             raise ValueError(
                 f"E_star = {self.E_star!r} and the spectrum give V(zeta_max) = {V_max!r} (V = E_star^2 <|grad h|^2> / "
@@ -143,16 +149,18 @@ class MeanSeparation:
         s_lo = s_hi - decades * np.log(10.0)
         kinks = [getattr(psd, "q_r", psd.q_l)] + list(getattr(psd, "q", []))
         kinks = np.asarray([k for k in kinks if psd.q_l < k < psd.q_s], dtype=float)
-        s_k = 0.5 * np.log(psd.V(kinks / psd.q_l, self.E_star)) if kinks.size else np.array([])
+        s_k = 0.5 * np.log(response.V(psd, kinks / psd.q_l)) if kinks.size else np.array([])
         n_pan = int(np.ceil((s_hi - s_lo) * n_per_unit))
         knots = np.unique(np.concatenate((np.linspace(s_lo, s_hi, n_pan + 1), s_k[s_k > s_lo])))
         a, b = knots[:-1], knots[1:]
         s = ((0.5 * (b - a))[:, None] * _GL_X + (0.5 * (a + b))[:, None]).ravel()
         w = ((0.5 * (b - a))[:, None] * _GL_W).ravel()
         self.sigma = np.exp(s)
-        q = psd.zeta_of_V(self.sigma**2, self.E_star) * psd.q_l
-        # d sigma = sigma ds; every integral is (2/E*) sum(weights * f(p_bar/sigma) * sigma^m / q)
-        self._w_ds = 2.0 / self.E_star * w * self.sigma / q  # for int f dsigma / q
+        q = response.zeta_of_V(psd, self.sigma**2) * psd.q_l
+        # d sigma = sigma ds; every integral is sum(weights * f(p_bar/sigma) * sigma^m * M(q)), with the surface
+        # compliance M(q) = 2 / (E_eff(q) q) (2 / (E* q) on the half-space)
+        E_eff = response.effective_modulus(q, needed_for="the mean separation, energy and stiffness")
+        self._w_ds = 2.0 / E_eff * w * self.sigma / q  # for int f dsigma M(q)
         self.u0 = float(self._w.slope_lo * np.sum(self._w_ds))
         const = float(np.sum(self._w_ds * (self._w.g_infinity + self._w.slope_lo * np.log(self.sigma))))
         self.beta = float(np.exp(const / self.u0) / self.E_star)
@@ -353,11 +361,17 @@ def separation_from_areas(psd: PSD, E_star, p_bar, zeta, A, fudge=None):
     if z[0] > 1.0:  # zeta = 1: V = 0, full contact
         z = np.concatenate(([1.0], z))
         A = np.concatenate((np.ones((1, p.size)), A))
-    V = psd.V(z, E_star)
+    response = ElasticHalfSpace(E_star)
+    V = response.V(psd, z)
     q = (z * psd.q_l)[:, None]
+    # U = (1/2) int W M(q) dV with the surface compliance M(q) = 2 / (E_eff(q) q) (2 / (E* q) on the half-space)
+    E_eff = response.effective_modulus(q, needed_for="the energy of separation_from_areas")
 
     def trapezoid(f):
-        return np.sum(0.5 * np.diff(V)[:, None] * (f[1:] + f[:-1]), axis=0) / E_star
+        if np.ndim(E_eff) == 0:  # a modulus without scale (the half-space): out of the sum
+            return np.sum(0.5 * np.diff(V)[:, None] * (f[1:] + f[:-1]), axis=0) / E_eff
+        f = f / E_eff
+        return np.sum(0.5 * np.diff(V)[:, None] * (f[1:] + f[:-1]), axis=0)
 
     U = trapezoid(A * S(A) / q)
     # the deficit D = U_full - U, computed from S(1) - A S(A) (no cancellation near full contact):
