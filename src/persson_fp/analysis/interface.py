@@ -51,7 +51,7 @@ def _resolved(problem, weighting):
     try:
         return _RESOLVED[key]
     except (KeyError, TypeError):
-        r = MagnificationResolved(problem.psd, problem.E_star, problem.fudge, weighting)
+        r = MagnificationResolved(problem.psd, problem.E_star, problem.fudge, weighting, response=problem.response)
         if len(_RESOLVED) > 32:
             _RESOLVED.clear()
         try:
@@ -228,12 +228,13 @@ def contact_conductance(problem, resistivity=None, thermal_conductivity=None, we
         Not exactly one of the two pairs, a value not > 0, or a load at complete contact (unbounded conductance).
     """
     _check(problem)
-    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
+    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting, response=problem.response)
     try:
         K = ms.stiffness(problem.p_bar)
     except ValueError as e:
         raise ValueError(f"{e}; the constriction conductance is unbounded there as well") from None
-    return _out(problem, _leak.barber_conductance(K, problem.E_star, resistivity, thermal_conductivity))
+    E = problem.response.plane_strain_modulus("Barber's relation between stiffness and conductance")
+    return _out(problem, _leak.barber_conductance(K, E, resistivity, thermal_conductivity))
 
 
 @dataclass
@@ -310,7 +311,7 @@ def adhesive_contact(problem, interaction, weighting: str = "yang-persson", rho=
     _check(problem)
     inter = _adh.resolve_interaction(interaction, rho)
     r = _resolved(problem, weighting)
-    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
+    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting, response=problem.response)
     p = problem.p_bar
     p_att = _p_att(r, p, inter)
     area = exact(problem).contact_area
@@ -327,6 +328,7 @@ def adhesive_contact(problem, interaction, weighting: str = "yang-persson", rho=
         options={"xatol": 1e-6},
     )
     p_min, f_min = (float(np.exp(res.x)), float(res.fun)) if res.fun <= f[k] else (float(grid[k]), float(f[k]))
+    E = problem.response.plane_strain_modulus("the Tabor parameter and the adhesion criteria")
     return AdhesiveContact(
         p_repulsive=_out(problem, p),
         p_attractive=_out(problem, p_att),
@@ -335,9 +337,9 @@ def adhesive_contact(problem, interaction, weighting: str = "yang-persson", rho=
         mean_separation=_out(problem, sep),
         pull_off=max(-f_min, 0.0),
         p_rep_at_pull_off=p_min,
-        tabor=_adh.tabor_parameter(problem.psd, problem.E_star, inter.w, inter.rho),
-        persson_tosatti=_adh.persson_tosatti(problem.psd, problem.E_star, inter.w),
-        pastewka_robbins=_adh.pastewka_robbins(problem.psd, problem.E_star, inter.w, inter.rho),
+        tabor=_adh.tabor_parameter(problem.psd, E, inter.w, inter.rho),
+        persson_tosatti=_adh.persson_tosatti(problem.psd, E, inter.w),
+        pastewka_robbins=_adh.pastewka_robbins(problem.psd, E, inter.w, inter.rho),
         interaction=inter,
         info={"pull_off_at_edge": at_edge, "weighting": weighting},
     )

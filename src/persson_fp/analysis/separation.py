@@ -50,7 +50,7 @@ def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:
         :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
     """
     _elastic_only(problem)
-    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
+    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting, response=problem.response)
     out = ms.mean_separation(problem.p_bar)
     return float(out[0]) if problem.scalar_load else out
 
@@ -80,6 +80,6 @@ def contact_stiffness(problem, weighting: str = "yang-persson") -> np.ndarray:
         :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
     """
     _elastic_only(problem)
-    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting)
+    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting, response=problem.response)
     out = ms.stiffness(problem.p_bar)
     return float(out[0]) if problem.scalar_load else out

@@ -17,7 +17,7 @@ from persson_fp.problems import walls as _walls
 from persson_fp.problems.loads import _check_loads, _warn_unit_slip
 from persson_fp.surfaces.psd import PSD, SelfAffinePSD
 from persson_fp.theory import fudge as _fudge
-from persson_fp.theory.response import ElasticHalfSpace
+from persson_fp.theory.response import ElasticHalfSpace, ElasticResponse
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -89,6 +89,8 @@ class ContactProblem:
         self.psd = psd
         self.E_star = as_positive_scalar(E_star, "E_star")
         self.response = ElasticHalfSpace(self.E_star)  # the solid's answer to the roughness: V, dV/dzeta, energy
+        self.V_kernels = self.response.kernels(self.psd)
+        """The response's dV/dzeta and inverse of V bound to the spectrum, unchecked: the solvers' fast path."""
         pb = _check_loads(p_bar)
         self.scalar_load = pb.ndim == 0
         self.p_bar = np.atleast_1d(pb).astype(float)
@@ -159,7 +161,8 @@ class ContactProblem:
         ratio = as_float_array(p_bar_ratio, "p_bar_ratio")
         if ratio.ndim > 1 or ratio.size == 0 or np.any(ratio <= 0):
             raise ValueError(f"p_bar_ratio must be a number > 0 or a non-empty 1-D array of them, got {p_bar_ratio!r}")
-        return cls(psd, E_star=1.0, p_bar=ratio * np.sqrt(psd.V(E_star=1.0)), fudge=fudge, hardness=hardness)
+        sqrt_V = np.sqrt(ElasticHalfSpace(1.0).V(psd))
+        return cls(psd, E_star=1.0, p_bar=ratio * sqrt_V, fudge=fudge, hardness=hardness)
 
     def with_loads(self, p_bar: ArrayLike) -> ContactProblem:
         """The same surface, modulus, fudge factor and hardness with other load(s).
@@ -191,10 +194,68 @@ class ContactProblem:
         new.__setstate__(state)  # freezes p_bar
         return new
 
+    def with_response(self, response) -> ContactProblem:
+        """The same surface, loads, fudge factor and walls on another elastic response.
+
+        Persson's diffusion equation needs the solid only through V(zeta) (Xu et al. tutorial,
+        Eq. 'eq:Vp_closed_form'): a response with another V -- a coated or layered solid, or a viscoelastic solid in
+        sliding contact, whose effective modulus depends on the frequency q v cos(phi) (Persson, J. Chem. Phys. 115
+        (2001) 3840) -- gives another contact problem that every method solves unchanged.  The quantities that need
+        the stored elastic energy (mean separation, gaps, leakage, adhesion) ask the response for it, and a response
+        that has none refuses them with a ``ValueError``.
+
+        Parameters
+        ----------
+        response : ElasticResponse
+            The solid's response (:mod:`persson_fp.theory.response`).  Its ``E_star`` attribute, where it has one,
+            becomes the problem's ``E_star`` (a reference modulus for messages and the unit check); otherwise the
+            problem keeps its own.
+
+        Returns
+        -------
+        ContactProblem
+            A new (immutable) problem of the same class; this one is unchanged.
+
+        Raises
+        ------
+        ValueError
+            ``response`` not an :class:`~persson_fp.theory.response.ElasticResponse`, or V(zeta_max) not finite and
+            > 0 with it.
+        """
+        if not isinstance(response, ElasticResponse):
+            raise ValueError(f"response must be an ElasticResponse, got {type(response).__name__}")
+        with np.errstate(over="ignore", under="ignore"):
+            V_max = float(response.V(self.psd))
+        if not (np.isfinite(V_max) and V_max > 0):
+            raise ValueError(f"response {response!r} and the spectrum give V(zeta_max) = {V_max!r}, not finite and > 0")
+        E = getattr(response, "E_star", self.E_star)
+        state = dict(self.__dict__, response=response, V_kernels=response.kernels(self.psd), E_star=E, _V_max=V_max)
+        state.update(_tau_map=None, _tau_max=None, _p_max=None)
+        new = object.__new__(type(self))
+        new.__setstate__(state)
+        return new
+
+    def elastic_counterpart(self) -> ContactProblem:
+        """The purely elastic problem of the same surface, response, loads and fudge factor (no yield wall, Persson's
+        coefficients): its effective variance tau(V) (Xu et al. tutorial, Eq. 'eq:new_B2') is the start of the
+        moving-wall engine.
+
+        Returns
+        -------
+        ContactProblem
+            A new plain :class:`ContactProblem`.
+        """
+        plain = ContactProblem(self.psd, self.E_star, self.p_bar, self.fudge)
+        return plain if self.response == plain.response else plain.with_response(self.response)
+
     def __repr__(self):
         loads = f"{self.p_bar[0]:.6g}" if self.scalar_load else f"<{self.p_bar.size} loads>"
         hard = self.upper_wall.repr_part()
-        return f"ContactProblem({self.psd!r}, E_star={self.E_star:.6g}, p_bar={loads}, fudge={self.fudge.name!r}{hard})"
+        resp = "" if self.response == ElasticHalfSpace(self.E_star) else f", response={self.response!r}"
+        return (
+            f"ContactProblem({self.psd!r}, E_star={self.E_star:.6g}, p_bar={loads}, fudge={self.fudge.name!r}"
+            f"{hard}{resp})"
+        )
 
     # -- coefficients ---------------------------------------------------------------
     @property

@@ -11,7 +11,7 @@ A solver never asks which wall it has.  It asks the wall where it stands (:meth:
 end (:meth:`Wall.p_max`, :meth:`Wall.probe_end`), how what the wall absorbed splits into a plastic area and a loss
 (:meth:`Wall.plastic_area`, :meth:`Wall.lost_mass`), the strip's load balance (:meth:`Wall.plastic_from_load`),
 the effective-variance map of a fudge factor (:meth:`Wall.tau_map`) and what a method must support to solve it
-(:attr:`Wall.feature`, matched against each method's ``SUPPORTS``).  A new kind of wall -- an adhesive wall at a
+(``Wall.feature``, matched against each method's ``SUPPORTS``).  A new kind of wall -- an adhesive wall at a
 negative pressure -sigma_a(zeta) (Persson, Phys. Rev. Lett. 89 (2002) 245502) -- is one more class here.
 
 This module imports no solver.
@@ -190,10 +190,10 @@ class YieldWall(Wall):
 
     def front(self, problem, V, p_end=None):
         V = np.atleast_1d(np.asarray(V, dtype=float))
-        psd, E = problem.psd, problem.E_star
-        z = np.atleast_1d(psd.zeta_of_V_unchecked(V, E))
+        kernels = problem.V_kernels
+        z = np.atleast_1d(kernels.zeta_of_V(V))
         s = self.hardness.sigma(z)
-        dV = psd.dV_dzeta_unchecked(z, E)
+        dV = kernels.dV_dzeta(z)
         sV = np.where(dV > 0, self.hardness.dsigma_dzeta(z) / np.where(dV > 0, dV, 1.0), 0.0)
         return s, sV
 
@@ -261,7 +261,8 @@ class MovingYieldWall(YieldWall):
 
 
 def upper_wall(hardness) -> Wall:
-    """The wall at the high-pressure end for a user's ``hardness=`` argument (:func:`persson_fp.hardness.resolve`)."""
+    """The wall at the high-pressure end for a user's ``hardness=`` argument
+    (:func:`persson_fp.theory.hardness.resolve`)."""
     h = _hardness.resolve(hardness)
     if h is None:
         return OpenEnd()

@@ -150,7 +150,7 @@ def zeta_of(problem, V) -> np.ndarray:
     """Magnifications where V(zeta) = ``V`` (pressure^2, finite: a solver's own values), as a 1-D array: 1 where
     V <= 0, zeta_max beyond V(zeta_max).  The spectrum's closed-form inverse, unchecked
     (:meth:`persson_fp.PSD.zeta_of_V_unchecked`)."""
-    return np.atleast_1d(problem.psd.zeta_of_V_unchecked(np.atleast_1d(np.asarray(V, dtype=float)), problem.E_star))
+    return np.atleast_1d(problem.V_kernels.zeta_of_V(np.atleast_1d(np.asarray(V, dtype=float))))
 
 
 class StationRecorder:

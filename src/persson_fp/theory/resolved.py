@@ -39,7 +39,7 @@ from persson_fp._validate import as_positive_scalar
 from persson_fp.surfaces.psd import PSD
 from persson_fp.theory import fudge as _fudge
 from persson_fp.theory.effective import effective_variance
-from persson_fp.theory.response import ElasticHalfSpace
+from persson_fp.theory.response import ElasticResponse, check_response
 from persson_fp.theory.separation import WEIGHTINGS
 from persson_fp.theory.separation_weight import _weight
 
@@ -82,6 +82,9 @@ class MagnificationResolved:
         The model S(A*) (None: Persson's original theory).
     weighting : {"yang-persson", "corrected-area"}
         Energy weighting of a fudge model (:mod:`persson_fp.theory.separation`).
+    response : ElasticResponse, optional
+        The solid's response (:mod:`persson_fp.theory.response`); default the elastic half-space of ``E_star``.
+        One without stored elastic energy raises ``ValueError`` where the separation is asked.
 
     Raises
     ------
@@ -89,14 +92,24 @@ class MagnificationResolved:
         ``psd`` not a PSD, ``E_star`` not > 0, an unknown fudge model or weighting.
     """
 
-    def __init__(self, psd: PSD, E_star: float = 1.0, fudge=None, weighting: str = "yang-persson"):
+    def __init__(
+        self,
+        psd: PSD,
+        E_star: float = 1.0,
+        fudge=None,
+        weighting: str = "yang-persson",
+        *,
+        response: ElasticResponse | None = None,
+    ):
         if not isinstance(psd, PSD):
             raise ValueError(f"psd must be a persson_fp PSD (SelfAffinePSD, TabulatedPSD), got {type(psd).__name__}")
         if weighting not in WEIGHTINGS:
             raise ValueError(f"weighting must be one of {list(WEIGHTINGS)}, got {weighting!r}")
         self.psd = psd
         self.E_star = as_positive_scalar(E_star, "E_star")
-        self.response = ElasticHalfSpace(self.E_star)
+        self.response = check_response(response, self.E_star)
+        # (a response without stored elastic energy is refused here, before any table is built)
+        self.response.effective_modulus(psd.q_l, needed_for="the magnification-resolved separation and gaps")
         self.fudge = _fudge.resolve(fudge)
         self.weighting = weighting
         self._w = _weight(self.fudge, weighting)

@@ -24,11 +24,30 @@ This module imports only numpy (the spectrum arrives as an argument).
 
 from __future__ import annotations
 
+from functools import partial
+from typing import NamedTuple
+
 import numpy as np
 
 from persson_fp._validate import as_float_array, as_positive_scalar, check_in_range
 
-__all__ = ["ElasticResponse", "ElasticHalfSpace"]
+__all__ = ["ElasticResponse", "ElasticHalfSpace", "Kernels", "check_response"]
+
+
+class Kernels(NamedTuple):
+    """A response's fast paths bound to one spectrum (what the solvers call inside their loops, unchecked).
+
+    Attributes
+    ----------
+    dV_dzeta : callable
+        ``dV_dzeta(z)``: dV/dzeta (pressure^2) at magnifications ``z`` already in [1, zeta_max].
+    zeta_of_V : callable
+        ``zeta_of_V(V)``: the inverse of V (dimensionless) at finite variances ``V`` (pressure^2).
+    """
+
+    dV_dzeta: object
+    zeta_of_V: object
+
 
 _BISECTIONS = 64
 """Halvings of the bracket in ln zeta of :meth:`ElasticResponse.zeta_of_V` (2^-64 of ln zeta_max: below round-off)."""
@@ -47,6 +66,21 @@ class ElasticResponse:
     """
 
     # -- the pressure side (every response) ------------------------------------------------------------------
+    def kernels(self, psd) -> Kernels:
+        """:meth:`dV_dzeta_unchecked` and :meth:`zeta_of_V_unchecked` bound to the spectrum ``psd``.
+
+        Parameters
+        ----------
+        psd : PSD
+            The spectrum.
+
+        Returns
+        -------
+        Kernels
+            The two callables of one argument.
+        """
+        return Kernels(partial(self.dV_dzeta_unchecked, psd), partial(self.zeta_of_V_unchecked, psd))
+
     def V(self, psd, zeta=None) -> np.ndarray:  # pragma: no cover - abstract
         r"""Complete-contact pressure variance :math:`V(\zeta)` (``eq:Vp_closed_form``).
 
@@ -149,6 +183,29 @@ class ElasticResponse:
             f"the elastic energy is not defined for this response ({type(self).__name__}: it defines no real "
             f"effective modulus E_eff(q)), needed for {needed_for}; use a response that stores elastic energy, "
             "e.g. ElasticHalfSpace(E_star)"
+        )
+
+    def plane_strain_modulus(self, needed_for: str) -> float:
+        """The one modulus E* of a homogeneous elastic half-space, for the relations derived for it alone.
+
+        Parameters
+        ----------
+        needed_for : str
+            The relation asking (e.g. "Barber's relation"), for the message.
+
+        Returns
+        -------
+        float, pressure
+            E* (only :class:`ElasticHalfSpace`).
+
+        Raises
+        ------
+        ValueError
+            This response is not a homogeneous half-space, naming ``needed_for``.
+        """
+        raise ValueError(
+            f"{needed_for} is derived for a homogeneous elastic half-space of one modulus E*; this response "
+            f"({type(self).__name__}) has none"
         )
 
     def effective_modulus(self, q, needed_for: str = "the elastic energy"):
@@ -271,6 +328,26 @@ class ElasticHalfSpace(ElasticResponse):
 
     def __reduce__(self):  # pickle / deepcopy through the constructor (the instance refuses attribute assignment)
         return (ElasticHalfSpace, (self.E_star,))
+
+    def plane_strain_modulus(self, needed_for: str) -> float:
+        return self.E_star
+
+    def kernels(self, psd) -> Kernels:
+        """The spectrum's own closed-form kernels at this E* (no call between the solver and the spectrum).
+
+        Parameters
+        ----------
+        psd : PSD
+            The spectrum.
+
+        Returns
+        -------
+        Kernels
+            :meth:`persson_fp.PSD.dV_dzeta_unchecked` and :meth:`persson_fp.PSD.zeta_of_V_unchecked` at ``E_star``.
+        """
+        return Kernels(
+            partial(psd.dV_dzeta_unchecked, E_star=self.E_star), partial(psd.zeta_of_V_unchecked, E_star=self.E_star)
+        )
 
     def V(self, psd, zeta=None) -> np.ndarray:
         r"""Complete-contact variance :math:`V = \tfrac14 E^{*2}\langle|\nabla h|^2\rangle(\zeta)` (``eq:VV_relation``).
@@ -429,3 +506,29 @@ class ElasticHalfSpace(ElasticResponse):
             Elastic energy per unit nominal area.
         """
         return psd.elastic_energy_complete(zeta, self.E_star)
+
+
+def check_response(response, E_star: float) -> ElasticResponse:
+    """The response a theory module works with: ``response`` (checked), or the half-space of ``E_star``.
+
+    Parameters
+    ----------
+    response : ElasticResponse or None
+        The solid's response; None: :class:`ElasticHalfSpace` of ``E_star``.
+    E_star : float, pressure
+        Plane-strain modulus (validated by the caller).
+
+    Returns
+    -------
+    ElasticResponse
+
+    Raises
+    ------
+    ValueError
+        ``response`` neither None nor an :class:`ElasticResponse`.
+    """
+    if response is None:
+        return ElasticHalfSpace(E_star)
+    if not isinstance(response, ElasticResponse):
+        raise ValueError(f"response must be None or an ElasticResponse, got {type(response).__name__}")
+    return response

@@ -51,7 +51,7 @@ import numpy as np
 from persson_fp._validate import as_float_array, as_positive_scalar
 from persson_fp.surfaces.psd import PSD
 from persson_fp.theory import fudge as _fudge
-from persson_fp.theory.response import ElasticHalfSpace
+from persson_fp.theory.response import ElasticResponse, check_response
 from persson_fp.theory.separation_weight import _GL_W, _GL_X, _weight
 
 __all__ = ["WEIGHTINGS", "MeanSeparation", "separation_from_areas"]
@@ -89,6 +89,9 @@ class MeanSeparation:
     decades : float
         The rule covers :math:`\sigma \in [\sigma_{max} e^{-\text{decades}\ln 10}, \sigma_{max}]` (>= 4); the part
         below contributes a fraction of order :math:`10^{-\text{decades}}` of :math:`\bar u` at small loads.
+    response : ElasticResponse, optional
+        The solid's response (:mod:`persson_fp.theory.response`); default the elastic half-space of ``E_star``
+        (which then only normalises ``beta``).  One without stored elastic energy raises ``ValueError``.
 
     Raises
     ------
@@ -117,6 +120,8 @@ class MeanSeparation:
         weighting: str = "yang-persson",
         n_per_unit: int = 2,
         decades: float = 14.0,
+        *,
+        response: ElasticResponse | None = None,
     ):
         if not isinstance(psd, PSD):
             raise ValueError(f"psd must be a persson_fp PSD (SelfAffinePSD, TabulatedPSD), got {type(psd).__name__}")
@@ -131,7 +136,9 @@ class MeanSeparation:
             raise ValueError(f"decades must be >= 4, got {decades!r}")
         self.psd = psd
         self.E_star = as_positive_scalar(E_star, "E_star")
-        self.response = ElasticHalfSpace(self.E_star)
+        self.response = check_response(response, self.E_star)
+        # (a response without stored elastic energy is refused here, before any table is built)
+        self.response.effective_modulus(psd.q_l, needed_for="the mean separation, energy and stiffness")
         self.fudge = _fudge.resolve(fudge)
         self.weighting = weighting
         self._w = _weight(self.fudge, weighting)
@@ -361,7 +368,7 @@ def separation_from_areas(psd: PSD, E_star, p_bar, zeta, A, fudge=None):
     if z[0] > 1.0:  # zeta = 1: V = 0, full contact
         z = np.concatenate(([1.0], z))
         A = np.concatenate((np.ones((1, p.size)), A))
-    response = ElasticHalfSpace(E_star)
+    response = check_response(None, E_star)
     V = response.V(psd, z)
     q = (z * psd.q_l)[:, None]
     # U = (1/2) int W M(q) dV with the surface compliance M(q) = 2 / (E_eff(q) q) (2 / (E* q) on the half-space)

@@ -117,7 +117,7 @@ class Coefficients:
     def _per_V(self, p, z):
         """(c or None, b) per unit V at pressures ``p`` and magnification ``z``."""
         pr = self.problem
-        g = float(pr.psd.dV_dzeta_unchecked(z, pr.E_star))  # (z from the spectrum's inverse: in range)
+        g = float(pr.V_kernels.dV_dzeta(z))  # (z from the spectrum's inverse: in range)
         if pr.general:
             B1, B2 = pr.coefficients(p, z)
             return (B1 / g if self.problem.B1_fun is not None else None), B2 / g
@@ -165,7 +165,7 @@ class Coefficients:
         pr = self.problem
         f = pr.B2_fun
         if f is None:
-            return lambda z: float(pr.psd.dV_dzeta_unchecked(z, pr.E_star))  # (quadrature nodes inside [1, zeta_max])
+            return lambda z: float(pr.V_kernels.dV_dzeta(z))  # (quadrature nodes inside [1, zeta_max])
 
         def b2(z):
             try:
@@ -194,7 +194,7 @@ class Coefficients:
         """
         z = self.z_ref if (self.separable or V is None) else self.zeta_of(V)
         pr = self.problem
-        if not float(pr.psd.dV_dzeta_unchecked(z, pr.E_star)) > 0:  # (z: zeta_max or the clipped inverse)
+        if not float(pr.V_kernels.dV_dzeta(z)) > 0:  # (z: zeta_max or the clipped inverse)
             raise ValueError(
                 f"method 'chebyshev' marches in V and needs dV/dzeta > 0, which vanishes at zeta = {z:.6g}; "
                 "use method='fv' or 'mol'"

@@ -105,14 +105,14 @@ class _Wall:
 
     def _beta(self, z):
         pr = self.problem
-        return 2.0 * pr.hardness.sigma(z) * pr.hardness.dsigma_dzeta(z) / pr.psd.dV_dzeta_unchecked(z, pr.E_star)
+        return 2.0 * pr.hardness.sigma(z) * pr.hardness.dsigma_dzeta(z) / pr.V_kernels.dV_dzeta(z)
 
     def __call__(self, V: float):
         hit = self._cache.get(V)
         if hit is None:
             pr = self.problem
             z = zeta_of(pr, float(V))
-            dV = float(pr.psd.dV_dzeta_unchecked(z, pr.E_star)[0])
+            dV = float(pr.V_kernels.dV_dzeta(z)[0])
             if not dV > 0:
                 raise ValueError(
                     f"method 'chebyshev': dV/dzeta vanishes at zeta = {float(z[0]):.6g} (V is no clock there for "

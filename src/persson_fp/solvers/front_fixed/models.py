@@ -120,7 +120,7 @@ class General(Homogenised):
         pr = mw.problem
         s, sV = mw.wall(V)
         z = float(mw.zeta(V)[0])  # (from the spectrum's inverse: in [1, zeta_max])
-        dVdz = float(pr.psd.dV_dzeta_unchecked(z, pr.E_star))
+        dVdz = float(pr.V_kernels.dV_dzeta(z))
         B1f, B2f = pr.coefficients(s * mw.x_faces, z)
         B1c, B2c = pr.coefficients(s * mw.x, z)
         b1f, b2f, b2c = B1f / dVdz, B2f / dVdz, B2c / dVdz

@@ -77,7 +77,7 @@ class MovingWall:
         """``drift_cells(V)``: b1 = B1 / V'(zeta) at the cell centres (pressure per unit V; zeros without a drift)."""
         self.drift_rate = partial(self.model.drift_rate, self)
         r"""``drift_rate(V, y)``: d/dV of the load the drift carries, :math:`\int b_1 P\,dp` (m,)."""
-        self.elastic = ContactProblem(problem.psd, problem.E_star, problem.p_bar, problem.fudge)
+        self.elastic = problem.elastic_counterpart()
         # without a hardness the far wall is the end of the numerical domain (what it absorbs is reported as lost);
         # general coefficients: sized from B1 and B2 themselves (persson_fp.solvers.front_fixed.domain)
         given = None if p_end is None else (float(p_end), None)

@@ -1,8 +1,8 @@
 r"""The start-up of a run of the front-fixed engine and its refusals (``"fv"``, ``"mol"``).
 
-:func:`general_start` checks the stations' resolution and asks the coefficient model
-(:mod:`~persson_fp.solvers.front_fixed.models`) for a start-up Gaussian cleared of the walls (``clear_start_V``) and
-the drift's cell Peclet number at a wall (``check_wall_peclet``); :func:`singular_step_error` names a drift too
+``general_start`` checks the stations' resolution and asks the coefficient model
+(``persson_fp.solvers.front_fixed.models``) for a start-up Gaussian cleared of the walls (``clear_start_V``) and
+the drift's cell Peclet number at a wall (``check_wall_peclet``); ``singular_step_error`` names a drift too
 strong for the implicit step.  (General coefficients only: the homogenised start is exact.)
 """
 
