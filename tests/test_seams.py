@@ -50,6 +50,10 @@ def _reads_kind(node) -> bool:
                 return True
             if any(isinstance(p, ast.Attribute) and p.attr == "kind" and _is_problem(p.value) for p in parts):
                 return True
+        if isinstance(n, ast.Call) and getattr(n.func, "id", None) == "getattr" and len(n.args) >= 2:
+            name = n.args[1]
+            if isinstance(name, ast.Constant) and name.value in FLAGS | {"hardness"}:
+                return True
         if isinstance(n, ast.Call) and getattr(n.func, "id", None) == "isinstance" and len(n.args) == 2:
             classes = n.args[1].elts if isinstance(n.args[1], ast.Tuple) else [n.args[1]]
             names = {getattr(c, "id", getattr(c, "attr", None)) for c in classes}
@@ -108,6 +112,7 @@ def test_the_counter_sees_a_branch(tmp_path):
         "assert isinstance(pr, FokkerPlanckProblem)\n"
         "y = [a for a in b if a.upper_wall.moves]\n"
         "if pr.kind == 'strip': pass\n"
+        "if getattr(pr, 'general', False): pass\n"
         "if grid.kind == 'cell': pass\n"  # not a problem kind
         "if pr.fudge is None: pass\n"  # not a problem kind
     )
@@ -117,4 +122,4 @@ def test_the_counter_sees_a_branch(tmp_path):
         tests = [node.test] if isinstance(node, (ast.If, ast.While, ast.IfExp, ast.Assert)) else []
         tests += list(node.ifs) if isinstance(node, ast.comprehension) else []
         n += sum(_reads_kind(t) for t in tests)
-    assert n == 6
+    assert n == 7

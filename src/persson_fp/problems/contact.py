@@ -420,6 +420,13 @@ class ContactProblem:
         return False
 
     @property
+    def conserved_load(self):
+        """The load every result must carry at every station: p_bar (pressure, (n_loads,); the load balance
+        int p P0 dp + sigma_Y A_pl = p_bar, Xu et al. tutorial Eq. 'eq:Load_equilibrium'), or None where a drift
+        B1 moves it (the solver's first-moment law is then the reference)."""
+        return self.p_bar
+
+    @property
     def features(self) -> frozenset:
         """What a method must support to solve this problem (matched against each method's ``SUPPORTS``):
         the walls' features ("hardness", "moving_wall") and "general" for general coefficients."""

@@ -98,6 +98,10 @@ class FokkerPlanckProblem(ContactProblem):
     def features(self) -> frozenset:
         return super().features | {"general"}
 
+    @property
+    def conserved_load(self):
+        return None
+
     def require_closed_form(
         self, remedy: str = "solve the problem numerically: pf.solve(problem, method='fv') (or 'mol')"
     ):
@@ -122,7 +126,8 @@ class FokkerPlanckProblem(ContactProblem):
         -------
         FokkerPlanckProblem
         """
-        return FokkerPlanckProblem(self.psd, self.E_star, p_bar, self.B1_fun, self.B2_fun, self.hardness)
+        new = FokkerPlanckProblem(self.psd, self.E_star, p_bar, self.B1_fun, self.B2_fun, self.hardness)
+        return new if new.response == self.response else new.with_response(self.response)
 
     def coefficients(self, p, zeta: float):
         """The coefficients at pressures ``p`` and magnification ``zeta``, checked.

@@ -128,10 +128,9 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
     #     (fv, the engine); the far wall's loss is allowed, being reported (info["far_wall_mass"]) and estimated
     flux = getattr(sol, "contact_area_flux_all", None)
     if flux is not None:
-        plastic = sol.plastic_area_all if sol.plastic_area_all is not None else 0.0
         far = float(sol.info.get("far_wall_mass") or 0.0)
-        with np.errstate(invalid="ignore"):
-            gap = np.abs(A - plastic - flux) if getattr(sol.problem, "hardness", None) is None else np.abs(A - flux)
+        with np.errstate(invalid="ignore"):  # (A* holds A_pl where a yield wall makes one: the walls' balance is 1)
+            gap = np.abs(A - flux)
         gap = np.nan_to_num(gap, nan=np.inf)
         checks["mass_balance"] = float(np.max(gap, initial=0.0))
         if checks["mass_balance"] > far + MASS_BALANCE_TOL:
@@ -147,7 +146,7 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
     # 3. load balance, or for general coefficients the first-moment law the solver integrated alongside
     #    (d/dzeta int p P dp = int B1 P dp - p_max J(p_max): info["load_law"], what the load must be at each station)
     law = sol.info.get("load_law")
-    general = getattr(sol.problem, "general", False)
+    conserved = sol.problem.conserved_load  # p_bar (eq:Load_equilibrium), or None where a drift moves the load
     if law is None and load.size == 1:  # one station, one load: Python floats (inf on overflow, never a warning)
         pb = float(p_bar[0])
         d = abs(float(load.item()) - pb) / pb
@@ -162,13 +161,13 @@ def check_invariants(sol, tolerances=None, *, raise_on_breach=True, extrema=None
         checks["max_load_drift"] = _lo_hi(drift)[1]
     tol_l = tol["load"]
     extra = sol.info.get("load_law_tolerance")  # the solver's estimate of the law's and the load's own errors
-    checks["load_law"] = "first-moment law" if law is not None else ("none" if general else "load balance")
-    if general and law is None:  # a solver without the moment law has nothing to check the load against
+    checks["load_law"] = "first-moment law" if law is not None else ("none" if conserved is None else "load balance")
+    if conserved is None and law is None:  # a solver without the moment law has nothing to check the load against
         sol.info.setdefault("warnings", []).append("general coefficients: the solver gave no first-moment law")
     tol_min = tol_l if isinstance(tol_l, float) else float(np.min(tol_l))
     over = None
     # the element-wise test only where the largest drift exceeds the smallest tolerance (the common case skips it)
-    if (law is not None or not general) and (extra is not None or checks["max_load_drift"] > tol_min):
+    if (law is not None or conserved is not None) and (extra is not None or checks["max_load_drift"] > tol_min):
         if drift is None:
             drift = np.full(load.shape, d)
         tol_load = np.broadcast_to(np.asarray(tol_l, dtype=float), drift.shape)
@@ -245,7 +244,7 @@ def _one_clean(sol, tol, a, load, extrema):
     to weigh, wall fluxes, a first-moment law), which then decides."""
     if getattr(sol, "contact_area_flux_all", None) is not None or sol.info.get("load_law") is not None:
         return None
-    if getattr(sol.problem, "general", False):
+    if sol.problem.conserved_load is None:  # (a drift moves the load: the full check decides)
         return None
     t_area, t_load = tol["area"], tol["load"]
     if not (math.isfinite(a) and math.isfinite(load) and -t_area <= a <= 1.0 + t_area) or type(t_load) is not float:

@@ -330,45 +330,17 @@ class ElasticHalfSpace(ElasticResponse):
         return (ElasticHalfSpace, (self.E_star,))
 
     def plane_strain_modulus(self, needed_for: str) -> float:
+        """E*."""
         return self.E_star
 
     def kernels(self, psd) -> Kernels:
-        """The spectrum's own closed-form kernels at this E* (no call between the solver and the spectrum).
-
-        Parameters
-        ----------
-        psd : PSD
-            The spectrum.
-
-        Returns
-        -------
-        Kernels
-            :meth:`persson_fp.PSD.dV_dzeta_unchecked` and :meth:`persson_fp.PSD.zeta_of_V_unchecked` at ``E_star``.
-        """
+        """The spectrum's own unchecked kernels at E* (no call between a solver and the spectrum)."""
         return Kernels(
             partial(psd.dV_dzeta_unchecked, E_star=self.E_star), partial(psd.zeta_of_V_unchecked, E_star=self.E_star)
         )
 
     def V(self, psd, zeta=None) -> np.ndarray:
-        r"""Complete-contact variance :math:`V = \tfrac14 E^{*2}\langle|\nabla h|^2\rangle(\zeta)` (``eq:VV_relation``).
-
-        Parameters
-        ----------
-        psd : PSD
-            The spectrum.
-        zeta : array_like, optional, dimensionless
-            Magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
-
-        Returns
-        -------
-        numpy.ndarray, pressure^2
-            V at each ``zeta``.
-
-        Raises
-        ------
-        ValueError
-            ``zeta`` not finite or outside ``[1, zeta_max]``.
-        """
+        """V(zeta) = (pi/2) E*^2 int q^3 C dq (the spectrum's closed form, bit for bit :meth:`persson_fp.PSD.V`)."""
         # the arithmetic of persson_fp.PSD.V, one call less on the stack (a solver's set-up asks it)
         E_star = np.float64(self.E_star)
         m = psd.moment_unchecked(3, psd.zeta_max if zeta is None else check_in_range(zeta, "zeta", 1.0, psd.zeta_max))
@@ -376,25 +348,7 @@ class ElasticHalfSpace(ElasticResponse):
             return 0.25 * E_star**2 * (2.0 * np.pi * m)
 
     def dV_dzeta(self, psd, zeta=None) -> np.ndarray:
-        r""":math:`dV/d\zeta = \frac{\pi}{2}E^{*2} q_l q^3 C(q)` at :math:`q = \zeta q_l` (``eq:dVdxi``).
-
-        Parameters
-        ----------
-        psd : PSD
-            The spectrum.
-        zeta : array_like, optional, dimensionless
-            Magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
-
-        Returns
-        -------
-        numpy.ndarray, pressure^2
-            dV/dzeta at each ``zeta``.
-
-        Raises
-        ------
-        ValueError
-            ``zeta`` not finite or outside ``[1, zeta_max]``.
-        """
+        """dV/dzeta = (pi/2) E*^2 q_l q^3 C(q) at q = zeta q_l (bit for bit :meth:`persson_fp.PSD.dV_dzeta`)."""
         # the arithmetic of persson_fp.PSD.dV_dzeta, one call less on the stack (a coefficient B2 asks it every step)
         E_star = self.E_star
         if type(zeta) is float and 1.0 - 1e-12 <= zeta <= psd.zeta_max * (1.0 + 1e-12):  # no array round trip
@@ -404,107 +358,27 @@ class ElasticHalfSpace(ElasticResponse):
         return psd.dV_dzeta_unchecked(z, E_star)
 
     def dV_dzeta_unchecked(self, psd, z) -> np.ndarray:
-        """:meth:`dV_dzeta` at magnifications already checked (the spectrum's unchecked kernel).
-
-        Parameters
-        ----------
-        psd : PSD
-            The spectrum.
-        z : float or ndarray, dimensionless
-            Magnification(s), finite floats in ``[1, zeta_max]`` (the caller's responsibility).
-
-        Returns
-        -------
-        numpy.ndarray, pressure^2
-            dV/dzeta at each ``z``.
-        """
+        """The spectrum's unchecked kernel :meth:`persson_fp.PSD.dV_dzeta_unchecked` at E*."""
         return psd.dV_dzeta_unchecked(z, self.E_star)
 
     def zeta_of_V(self, psd, V) -> np.ndarray:
-        """The inverse of :meth:`V` in closed form (the spectrum's :meth:`persson_fp.PSD.zeta_of_V`).
-
-        Parameters
-        ----------
-        psd : PSD
-            The spectrum.
-        V : array_like, pressure^2
-            Complete-contact pressure variance(s), finite.
-
-        Returns
-        -------
-        numpy.ndarray, dimensionless
-            zeta with V(zeta) = ``V``: 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
-        """
+        """The spectrum's closed-form inverse :meth:`persson_fp.PSD.zeta_of_V` at E*."""
         return psd.zeta_of_V(V, self.E_star)
 
     def zeta_of_V_unchecked(self, psd, V) -> np.ndarray:
-        """:meth:`zeta_of_V` at variances already checked (the spectrum's unchecked kernel).
-
-        Parameters
-        ----------
-        psd : PSD
-            The spectrum.
-        V : ndarray, pressure^2
-            Complete-contact pressure variance(s), finite floats (the caller's responsibility).
-
-        Returns
-        -------
-        numpy.ndarray, dimensionless
-            zeta with V(zeta) = ``V``.
-        """
+        """The spectrum's unchecked inverse :meth:`persson_fp.PSD.zeta_of_V_unchecked` at E*."""
         return psd.zeta_of_V_unchecked(V, self.E_star)
 
     def effective_modulus(self, q, needed_for: str = "the elastic energy") -> float:
-        """:math:`E_{eff}(q) = E^*` at every wavevector.
-
-        Parameters
-        ----------
-        q : float or array_like, 1/length
-            Wavenumber(s) (unused: the half-space has no length scale).
-        needed_for : str
-            Unused (the half-space stores elastic energy).
-
-        Returns
-        -------
-        float, pressure
-            ``E_star``.
-        """
+        """E_eff(q) = E* at every wavevector."""
         return self.E_star
 
     def compliance(self, q, needed_for: str = "the elastic energy"):
-        r"""Surface compliance :math:`M(q) = 2/(E^* q)` of the half-space (Persson, J. Chem. Phys. 115 (2001) 3840).
-
-        Parameters
-        ----------
-        q : float or array_like, 1/length
-            Wavenumber(s), > 0.
-        needed_for : str
-            Unused (the half-space stores elastic energy).
-
-        Returns
-        -------
-        float or numpy.ndarray, length / pressure
-            :math:`M(q)` at each ``q``.
-        """
+        """M(q) = 2 / (E* q)."""
         return 2.0 / self.E_star / np.asarray(q, dtype=float)
 
     def elastic_energy_complete(self, psd, zeta=None, needed_for: str = "the elastic energy") -> np.ndarray:
-        r""":math:`U_{el}/A_n = \frac{\pi}{2}E^*\int_{q_l}^{\zeta q_l} q^2C\,dq` (``eq:Uel_complete_2``).
-
-        Parameters
-        ----------
-        psd : PSD
-            The spectrum.
-        zeta : array_like, optional, dimensionless
-            Magnification(s) in ``[1, zeta_max]``; default ``zeta_max``.
-        needed_for : str
-            Unused (the half-space stores elastic energy).
-
-        Returns
-        -------
-        numpy.ndarray, pressure x length
-            Elastic energy per unit nominal area.
-        """
+        """U_el / A_n = (pi/2) E* int q^2 C dq (the spectrum's :meth:`persson_fp.PSD.elastic_energy_complete`)."""
         return psd.elastic_energy_complete(zeta, self.E_star)
 
 
