@@ -263,6 +263,22 @@ def test_surfaces_and_tables_must_pair():
         pf.calibrate({"a": PSD, "b": PSD}, {"p_bar": p, "contact_area": A, "surface": ["x"] * 7})
 
 
+def test_surface_column_must_name_a_single_spectrum_too():
+    # one spectrum in a sequence or mapping is named like several ("0", or the key): a 'surface' column naming
+    # another surface is refused the same way, not fitted against the only spectrum
+    p, A = bem_area()
+    with pytest.raises(ValueError, match=r"column 'surface', row 0: 'x' names no surface \(have \['0'\]\)"):
+        pf.calibrate([PSD], {"p_bar": p, "contact_area": A, "surface": ["x"] * 7})
+    with pytest.raises(ValueError, match=r"'b' names no surface \(have \['a'\]\)"):
+        pf.calibrate({"a": PSD}, {"p_bar": p, "contact_area": A, "surface": ["a"] * 6 + ["b"]})
+    # a bare PSD is unnamed: any one label, but not rows of two surfaces
+    with pytest.raises(ValueError, match=r"column 'surface' names 2 surfaces"):
+        pf.calibrate(PSD, {"p_bar": p, "contact_area": A, "surface": ["a"] * 6 + ["b"]})
+    good = pf.calibrate({"a": PSD}, {"p_bar": p, "contact_area": A, "surface": ["a"] * 7})
+    bare = pf.calibrate(PSD, {"p_bar": p, "contact_area": A})
+    assert good.params == pytest.approx(bare.params, rel=1e-12)
+
+
 def test_weights_scale_the_quantities(rng):
     # A* from gamma = 0.45 and a separation from gamma = 0.6 (inconsistent on purpose): a tiny weight on the
     # separation leaves the A*-only fit, a huge one gives the separation-only fit

@@ -231,7 +231,8 @@ def pair_surfaces(psd_or_surfaces, data, quantities=None) -> list[Dataset]:
         One spectrum per surface.
     data : table or sequence of tables
         One table per surface (in the same order), or one table whose ``surface`` column names the surface
-        of each row (the mapping's keys, or the positions 0, 1, ... of a sequence).
+        of each row (the mapping's keys, or the positions 0, 1, ... of a sequence), one spectrum in a sequence or
+        mapping included; with a bare PSD (unnamed) the column must hold a single label.
     quantities : sequence of str, optional
         Quantities to read (default: those present).
 
@@ -243,8 +244,8 @@ def pair_surfaces(psd_or_surfaces, data, quantities=None) -> list[Dataset]:
     Raises
     ------
     ValueError
-        Bad tables (:func:`read_table`), a count of tables that does not match the surfaces, or a ``surface``
-        value that names no surface.
+        Bad tables (:func:`read_table`), a count of tables that does not match the surfaces, a ``surface``
+        value that names no surface (the message lists the known names), or several labels for a bare PSD.
     """
     surfaces = _surfaces(psd_or_surfaces)
     single = (
@@ -268,8 +269,17 @@ def pair_surfaces(psd_or_surfaces, data, quantities=None) -> list[Dataset]:
         return [_dataset(surfaces[0][0], surfaces[0][1], cols)]
     labels = cols["surface"]
     names = [n for n, _ in surfaces]
+    if isinstance(psd_or_surfaces, PSD):
+        # one unnamed spectrum: the column may carry any one label, but not several (rows of other surfaces)
+        found = list(dict.fromkeys(labels))
+        if len(found) > 1:
+            raise ValueError(
+                f"column 'surface' names {len(found)} surfaces {found} but one spectrum (a bare PSD) was given; "
+                "pass a mapping name -> PSD naming each"
+            )
+        return [_dataset(names[0], surfaces[0][1], cols)]
     for i, lab in enumerate(labels):
-        if lab not in names and not (len(surfaces) == 1):
+        if lab not in names:  # the same rule for one spectrum as for several
             raise ValueError(f"column 'surface', {_where(source, i)}: {lab!r} names no surface (have {names})")
     if len(surfaces) == 1:
         return [_dataset(names[0], surfaces[0][1], cols)]
