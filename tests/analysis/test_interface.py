@@ -6,6 +6,7 @@ conductance, adaptive quadrature of the attraction, brute-force minimisation for
 """
 
 import os
+import re
 from types import SimpleNamespace
 
 import numpy as np
@@ -632,3 +633,111 @@ def test_a_threshold_given_to_the_effective_medium_is_refused():
     pr = pf.ContactProblem(psd, E_star=1.0, p_bar=1e-2 * np.sqrt(psd.V()), fudge="WM17")
     with pytest.raises(ValueError, match="A_c"):
         pf.leak_rate(pr, viscosity=1.0, pressure_drop=1.0, method="effective-medium", A_c=0.3)
+
+
+# -- range checks of the magnification-resolved quantities and the gap distribution's options ------------------
+_R = MagnificationResolved(PSD, 1.0, "WM17")
+_ZMAX = PSD.zeta_max
+_GOOD_P = 0.01
+
+
+def _bad_loads():
+    from hypothesis import strategies as st
+
+    return st.one_of(
+        st.floats(max_value=0.0, allow_nan=False),
+        st.sampled_from([np.nan, np.inf, -np.inf]),
+    )
+
+
+def _bad_zetas():
+    from hypothesis import strategies as st
+
+    return st.one_of(
+        st.floats(max_value=0.999, allow_nan=False),
+        st.floats(min_value=_ZMAX * 1.001, allow_nan=False),
+        st.sampled_from([np.nan, np.inf]),
+    )
+
+
+def _bad_areas():
+    from hypothesis import strategies as st
+
+    return st.one_of(
+        st.floats(max_value=0.0, allow_nan=False),
+        st.floats(min_value=1.0 + 1e-9, allow_nan=False),
+        st.sampled_from([np.nan, np.inf]),
+    )
+
+
+def test_resolved_refuses_bad_loads_zetas_and_areas():
+    # was: area(-1, 2) = -1, separation(nan, 2) = 0 and a zeta for A = 0.01 at a negative load
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    calls = [
+        ("area", lambda p, z, a: _R.area(p, z)),
+        ("separation", lambda p, z, a: _R.separation(p, z)),
+        ("u1", lambda p, z, a: _R.u1(p, z)),
+        ("zeta_of_area", lambda p, z, a: _R.zeta_of_area(p, a)),
+    ]
+
+    @settings(max_examples=40, deadline=None)
+    @given(st.sampled_from(calls), st.sampled_from(["p_bar", "zeta", "A"]), st.data())
+    def check(call, which, data):
+        name, f = call
+        if name == "zeta_of_area" and which == "zeta" or name != "zeta_of_area" and which == "A":
+            which = "p_bar"
+        p, z, a = _GOOD_P, 2.0, 0.5
+        if which == "p_bar":
+            p = data.draw(_bad_loads())
+        elif which == "zeta":
+            z = data.draw(_bad_zetas())
+        else:
+            a = data.draw(_bad_areas())
+        with pytest.raises(ValueError, match=which):
+            f(np.array([0.02, p]) if which == "p_bar" else p, z, a)
+
+    check()
+    for bad in (-1.0, np.nan, 1.5):
+        with pytest.raises(ValueError, match=r"A must lie in \[0, 1\]"):
+            _R.separation(_GOOD_P, 2.0, A=bad)
+        with pytest.raises(ValueError, match=r"zeta must lie in \[1"):
+            _R.h(np.array([1.0, _ZMAX * 2 if bad == 1.5 else bad]))
+    # the edges stay valid: A = 1 (reached to round-off before some zeta > 1), zeta_max gives no separation
+    assert float(_R.area(_GOOD_P, _R.zeta_of_area(_GOOD_P, 1.0))) == pytest.approx(1.0, abs=1e-15)
+    assert float(_R.separation(_GOOD_P, _ZMAX)) == 0.0
+
+
+@pytest.mark.parametrize("rng", ["x", -1, 1.5, True, [1, 2], np.random.RandomState(0)])
+def test_sample_refuses_a_bad_rng(rng):
+    gd = pf.gap_distribution(pf.ContactProblem(PSD, 1.0, 0.01, fudge="WM17"))
+    with pytest.raises(ValueError, match="rng must be None, an integer >= 0 or a numpy.random.Generator"):
+        gd.sample(10, rng=rng)
+
+
+def test_sample_takes_none_an_integer_or_a_generator():
+    gd = pf.gap_distribution(pf.ContactProblem(PSD, 1.0, 0.01, fudge="WM17"))
+    a, b = gd.sample(50, rng=3), gd.sample(50, rng=np.random.default_rng(3))
+    np.testing.assert_array_equal(a, b)
+    assert gd.sample(5, rng=np.int64(0)).shape == (5,) and gd.sample(5).shape == (5,)
+
+
+@pytest.mark.parametrize("name", ["n_area", "n_zeta"])
+def test_station_counts_are_bounded_with_a_memory_estimate(name):
+    from persson_fp.solvers.base import MEMORY_BUDGET
+    from persson_fp.theory import gaps
+
+    assert gaps.MEMORY_BUDGET == MEMORY_BUDGET  # one budget for the package
+    pr = pf.ContactProblem(PSD, 1.0, 0.01, fudge="WM17")
+    with pytest.raises(ValueError, match=rf"{name} must be an integer in \[8, 1e\+06\], got 1000000000"):
+        pf.gap_distribution(pr, **{name: 10**9})
+    with pytest.raises(ValueError, match=rf"{name} must be an integer in \[8"):
+        pf.gap_distribution(pr, **{name: 7})
+    # within the count but over the budget with many loads: the estimate is stated (384 B a load and station)
+    many = pf.ContactProblem(PSD, 1.0, np.geomspace(1e-3, 1e-1, 20000), fudge="WM17")
+    need = gaps.memory_estimate(20000, *((10**6, 48) if name == "n_area" else (64, 10**6)))
+    assert need > MEMORY_BUDGET
+    gib = re.escape(f"{need / 2**30:.3g}")
+    with pytest.raises(ValueError, match=rf"{name} = 1000000 .* would take about {gib} GiB"):
+        pf.gap_distribution(many, **{name: 10**6})

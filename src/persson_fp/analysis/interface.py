@@ -86,7 +86,9 @@ def gap_distribution(
     weighting : {"yang-persson", "corrected-area"}
         Energy weighting of the separation (:mod:`persson_fp.theory.separation`).
     n_area, n_zeta : int
-        Stations uniform in A and log-uniform in ζ (>= 8 each).
+        Stations uniform in A and log-uniform in ζ, each in [8, 1e6]; with the loads they must fit the
+        memory budget of :mod:`~persson_fp.theory.gaps` (4 GiB, the solvers' default: about 384 bytes a load
+        and station), else ``ValueError`` with the estimate.
     weight_cut : float
         The first fraction of the non-contact area whose gap the theory cannot resolve (:mod:`~persson_fp.theory.gaps`).
 

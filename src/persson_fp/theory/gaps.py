@@ -43,6 +43,41 @@ _SQ2PI = np.sqrt(2.0 * np.pi)
 MAX_SAMPLES = 10**8
 """Most samples :meth:`GapDistribution.sample` draws in one call (over all loads; 0.8 GB)."""
 
+MAX_STATIONS = 10**6
+"""Largest ``n_area`` or ``n_zeta`` of a :class:`GapDistribution`."""
+
+MEMORY_BUDGET = 4 * 2**30
+"""Bytes a :class:`GapDistribution` may take while it is built: 4 GiB, the solvers' default budget
+(``persson_fp.solvers.base.MEMORY_BUDGET``; this module imports no solver, a test keeps the two equal)."""
+
+_BYTES_PER_STATION = 48 * 8
+"""Peak bytes per (load, station) while the distribution is built (tracemalloc: 18-44 float64 per station)."""
+
+
+def memory_estimate(n_loads: int, n_area: int, n_zeta: int) -> int:
+    """Peak memory (bytes) of building a :class:`GapDistribution`: 48 float64 per load and station, plus 1 MiB.
+
+    Parameters
+    ----------
+    n_loads, n_area, n_zeta : int
+        Loads, stations uniform in A and stations log-uniform in ζ.
+
+    Returns
+    -------
+    int
+        Bytes.
+    """
+    return int(_BYTES_PER_STATION * n_loads * (n_area + n_zeta) + 2**20)
+
+
+def _check_rng(rng):
+    """``rng``: None, an integer >= 0 or a numpy Generator (else ValueError naming ``rng``)."""
+    if rng is None or isinstance(rng, np.random.Generator):
+        return rng
+    if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool) and rng >= 0:
+        return rng
+    raise ValueError(f"rng must be None, an integer >= 0 or a numpy.random.Generator, got {rng!r}")
+
 
 class GapDistribution:
     r"""Distribution of the interfacial gap :math:`P(u)` at each load (Almqvist et al., JMPS 59 (2011) 2355).
@@ -57,9 +92,11 @@ class GapDistribution:
     p_bar : array_like, pressure
         Loads (> 0), 1-D.
     n_area : int
-        Stations uniform in A (>= 8).
+        Stations uniform in A, in [8, 1e6].
     n_zeta : int
-        Extra stations log-uniform in ζ (>= 8): they resolve :math:`h_\zeta` near :math:`\zeta_{max}`.
+        Extra stations log-uniform in ζ, in [8, 1e6]: they resolve :math:`h_\zeta` near :math:`\zeta_{max}`.
+        Together with the loads they must fit :data:`MEMORY_BUDGET` (:func:`memory_estimate`: about
+        384 bytes a load and station), else ``ValueError`` with the estimate.
     weight_cut : float
         Fraction of the non-contact area, lost first (ζ near 1), whose gap is not resolved (module docstring);
         in [1e-12, 0.01].
@@ -82,11 +119,20 @@ class GapDistribution:
         self.resolved = r = resolved
         self.scalar = np.ndim(p_bar) == 0
         p = as_float_array(p_bar, "p_bar").reshape(-1)
-        if p.size == 0 or np.any(p <= 0):
+        if p.size == 0 or not np.all(p > 0):
             raise ValueError("p_bar must hold at least one load, all > 0 (pressure)")
         for name, n in (("n_area", n_area), ("n_zeta", n_zeta)):
-            if not isinstance(n, (int, np.integer)) or n < 8:
-                raise ValueError(f"{name} must be an integer >= 8, got {n!r}")
+            if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 8 <= n <= MAX_STATIONS:
+                raise ValueError(f"{name} must be an integer in [8, {MAX_STATIONS:.0e}], got {n!r}")
+        if area is None:
+            need = memory_estimate(p.size, int(n_area), int(n_zeta))
+            if need > MEMORY_BUDGET:
+                big = "n_area" if n_area >= n_zeta else "n_zeta"
+                raise ValueError(
+                    f"{big} = {max(n_area, n_zeta)} (n_area, n_zeta each in [8, {MAX_STATIONS:.0e}]) with "
+                    f"{p.size} loads would take about {need / 2**30:.3g} GiB, over the budget of "
+                    f"{MEMORY_BUDGET / 2**30:.3g} GiB; use fewer stations or loads"
+                )
         weight_cut = as_positive_scalar(weight_cut, "weight_cut")
         if not 1e-12 <= weight_cut <= 0.01:
             raise ValueError(f"weight_cut must lie in [1e-12, 0.01], got {weight_cut!r}")
@@ -291,8 +337,13 @@ class GapDistribution:
         ----------
         n : int
             Samples per load (>= 1).
-        rng : numpy.random.Generator or int, optional
-            Random source or seed.
+        rng : None, int or numpy.random.Generator, optional
+            Random source, or the integer (>= 0) that starts a new one; None: fresh entropy.
+
+        Raises
+        ------
+        ValueError
+            ``n`` not an integer in [1, 1e8] (over all loads), or ``rng`` none of the above.
 
         Returns
         -------
@@ -305,7 +356,7 @@ class GapDistribution:
             raise ValueError(
                 f"n x loads = {n * self.n_loads:.3g} samples exceed {MAX_SAMPLES:.0e} (8 bytes each); draw in batches"
             )
-        rng = np.random.default_rng(rng)
+        rng = np.random.default_rng(_check_rng(rng))
         out = np.zeros((self.n_loads, n))
         for j in range(self.n_loads):
             probs = np.concatenate(([self.atom[j]], self.weights[j]))

@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import erf, erfinv
 
-from persson_fp._validate import as_positive_scalar
+from persson_fp._validate import as_float_array, as_positive_scalar
 from persson_fp.surfaces.psd import PSD
 from persson_fp.theory import fudge as _fudge
 from persson_fp.theory.effective import effective_variance
@@ -57,6 +57,43 @@ def _kinks(psd):
         q = [getattr(psd, "q_r", psd.q_l)]
     q = np.asarray(q, dtype=float).reshape(-1)
     return q[(q > psd.q_l) & (q < psd.q_s)]
+
+
+def _show(x) -> str:
+    """A value for a message: an array by its shape and first element."""
+    if np.ndim(x) == 0:
+        return repr(x)
+    a = np.asarray(x)
+    return f"an array of shape {a.shape}, first element {a.flat[0]!r}" if a.size else f"an empty array {a.shape}"
+
+
+def _in(x, name: str, allowed: str, ok) -> np.ndarray:
+    """``x`` as a float array with ``ok(x)`` true everywhere, else ValueError naming ``name`` and ``allowed``."""
+    try:
+        a = as_float_array(x, name)
+    except ValueError:  # not real, or NaN / inf: stated with the range
+        a = None
+    if a is None or not np.all(ok(a)):
+        raise ValueError(f"{name} must lie in {allowed}, got {_show(x)}")
+    return a
+
+
+def _loads(p_bar) -> np.ndarray:
+    """``p_bar`` as a float array, every element finite and > 0 (else ValueError naming ``p_bar``)."""
+    return _in(p_bar, "p_bar", "(0, inf) (pressure, finite)", lambda p: p > 0)
+
+
+def _areas(A, name: str, lo_open: bool) -> np.ndarray:
+    """Area fractions in (0, 1] (``lo_open``) or [0, 1] (else ValueError naming ``name``)."""
+    if lo_open:
+        return _in(A, name, "(0, 1] (contact area fraction)", lambda a: (a > 0) & (a <= 1.0))
+    return _in(A, name, "[0, 1] (contact area fraction)", lambda a: (a >= 0) & (a <= 1.0))
+
+
+def _zetas(psd, zeta) -> np.ndarray:
+    """Magnifications in [1, zeta_max] (NaN and inf refused with the range)."""
+    _in(zeta, "zeta", f"[1, {psd.zeta_max:.17g}] (magnification)", lambda z: np.isfinite(z))
+    return psd.check_zeta(zeta)
 
 
 class MagnificationResolved:
@@ -163,9 +200,14 @@ class MagnificationResolved:
         -------
         ndarray, dimensionless
             A in [0, 1].
+
+        Raises
+        ------
+        ValueError
+            ``p_bar`` not finite and > 0, or ``zeta`` outside [1, zeta_max].
         """
-        p = np.asarray(p_bar, dtype=float)
-        V = self.response.V(self.psd, self.psd.check_zeta(zeta))
+        p = _loads(p_bar)
+        V = self.response.V(self.psd, _zetas(self.psd, zeta))
         tau = self._ev.tau(p, V)
         with np.errstate(divide="ignore"):
             return np.where(tau > 0, erf(p / np.sqrt(2.0 * np.where(tau > 0, tau, 1.0))), 1.0)
@@ -178,15 +220,20 @@ class MagnificationResolved:
         p_bar : array_like, pressure
             Loads (> 0), broadcast against ``A``.
         A : array_like, dimensionless
-            Areas in (0, 1); where :math:`A(\zeta_{max})` is above ``A`` the result is zeta_max.
+            Areas in (0, 1] (1: ζ = 1); where :math:`A(\zeta_{max})` is above ``A`` the result is zeta_max.
 
         Returns
         -------
         ndarray, dimensionless
             ζ in [1, zeta_max].
+
+        Raises
+        ------
+        ValueError
+            ``p_bar`` not finite and > 0, or ``A`` outside (0, 1].
         """
-        p = np.asarray(p_bar, dtype=float)
-        A = np.clip(np.asarray(A, dtype=float), 1e-300, 1.0 - 1e-16)
+        p = _loads(p_bar)
+        A = np.clip(_areas(A, "A", lo_open=True), 1e-300, 1.0 - 1e-16)
         tau = p * p / (2.0 * erfinv(A) ** 2)
         V = self._ev.V_of_tau(p, tau)
         return self.response.zeta_of_V(self.psd, np.minimum(V, self.V_max))
@@ -197,14 +244,19 @@ class MagnificationResolved:
         Parameters
         ----------
         zeta : array_like, dimensionless
-            Magnifications (clipped to [1, zeta_max]).
+            Magnifications in [1, zeta_max] (round-off outside, 1e-12 relative, clipped).
 
         Returns
         -------
         ndarray, length
             :math:`h_\zeta`, 0 at zeta_max.
+
+        Raises
+        ------
+        ValueError
+            ``zeta`` not finite or outside [1, zeta_max].
         """
-        z = np.asarray(zeta, dtype=float)
+        z = _zetas(self.psd, zeta)
         h2 = self.h2_max - np.asarray(self.psd.h2(np.clip(z, 1.0, self.psd.zeta_max).ravel())).reshape(z.shape)
         return np.sqrt(np.maximum(h2, 0.0))
 
@@ -219,18 +271,23 @@ class MagnificationResolved:
         zeta : array_like, dimensionless
             Magnifications in [1, zeta_max].
         A : array_like, optional, dimensionless
-            :math:`A(\zeta)` at those points (a numerical solution's areas); default :meth:`area`.
+            :math:`A(\zeta)` at those points (a numerical solution's areas), in [0, 1]; default :meth:`area`.
 
         Returns
         -------
         ndarray, length
             :math:`\bar u(\zeta)`, of the broadcast shape; 0 at zeta_max and wherever the local pressure exceeds
             10 :math:`\Sigma(\zeta)\sqrt{S(1)}` (full contact of the finer roughness to :math:`e^{-45}`).
+
+        Raises
+        ------
+        ValueError
+            ``p_bar`` not finite and > 0, ``zeta`` outside [1, zeta_max], or ``A`` outside [0, 1].
         """
-        p, z = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(zeta, dtype=float))
+        p, z = np.broadcast_arrays(_loads(p_bar), _zetas(self.psd, zeta))
         if A is None:
             A = self.area(p, z)
-        A = np.broadcast_to(np.asarray(A, dtype=float), p.shape)
+        A = np.broadcast_to(_areas(A, "A", lo_open=False), p.shape)
         shape = p.shape
         p, z, A = p.ravel(), z.ravel(), A.ravel()
         out = np.zeros(p.size)
@@ -310,11 +367,16 @@ class MagnificationResolved:
         -------
         ndarray, length
             :math:`u_1`.
+
+        Raises
+        ------
+        ValueError
+            ``p_bar`` not finite and > 0, ``zeta`` outside [1, zeta_max], or ``dA`` outside (0, 0.05].
         """
         dA = as_positive_scalar(dA, "dA")
         if dA > 0.05:
             raise ValueError(f"dA must lie in (0, 0.05], got {dA!r}")
-        p, z = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(zeta, dtype=float))
+        p, z = np.broadcast_arrays(_loads(p_bar), _zetas(self.psd, zeta))
         A = self.area(p, z)
         A_end = self.area(p, self.psd.zeta_max)
         A_hi = np.minimum(A + dA, 1.0)
