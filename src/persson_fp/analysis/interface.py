@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from persson_fp._errors import SolverError
 from persson_fp.analysis.exact import exact
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.theory import adhesion as _adh
@@ -306,9 +307,21 @@ def adhesive_contact(problem, interaction, weighting: str = "yang-persson", rho=
     -------
     AdhesiveContact
         Arrays per load (floats for a scalar load) and the pull-off stress.  The pull-off is searched on 121 loads
-        log-spaced over :math:`[10^{-6}, 3]\sqrt{V(\zeta_{max})}` and refined by bounded Brent minimisation in
-        :math:`\ln p_{rep}` (relative tolerance 1e-6 in :math:`p_{rep}`); ``info["pull_off_at_edge"]`` says if the
-        minimum lies at the edge of that range.
+        log-spaced over :math:`[10^{-6}, 3]\sqrt{V(\zeta_{max})}`; where the least value is at an end, the grid grows
+        past that end (20 more points on the same spacing at a time, within :math:`[10^{-30}, 30]\sqrt{V}`) until
+        the minimum of :math:`p_{rep} - p_{att}` is bracketed, or (at the low end) until the attraction at the lowest
+        load, which bounds what any lower load can pull, cannot beat the minimum found; then bounded Brent
+        minimisation in :math:`\ln p_{rep}` refines it (relative tolerance 1e-6 in :math:`p_{rep}`).
+        ``info["pull_off_at_edge"]`` says if the first grid had to grow.  The pull-off is resolved to about
+        :math:`10^{-12}\sqrt{V}` absolute (below that it is zero).
+
+    Raises
+    ------
+    ValueError
+        Not an elastic ContactProblem, or a bad interaction.
+    SolverError
+        The minimum lies beyond :math:`[10^{-30}, 30]\sqrt{V}` (the message says on which side): no value from the
+        edge is reported.
     """
     _check(problem)
     inter = _adh.resolve_interaction(interaction, rho)
@@ -322,6 +335,27 @@ def adhesive_contact(problem, interaction, weighting: str = "yang-persson", rho=
     f = grid - _p_att(r, grid, inter)
     k = int(np.argmin(f))
     at_edge = k in (0, grid.size - 1)
+    # the minimum at an edge: the search grows there, a decade at a time on the same spacing, until the minimum
+    # has a neighbour on each side, within [1e-30, 30] sqrt(V) where the gaps and the attraction are finite
+    step = grid[1] / grid[0]
+    lo_end, hi_end = 1e-30 * np.sqrt(r.V_max), 30.0 * np.sqrt(r.V_max)
+    while k in (0, grid.size - 1):
+        down = k == 0
+        # below the grid p_rep - p_att >= -p_att(grid[0]) (the attraction grows with the load: a smaller load
+        # separates the surfaces further): where that bound cannot beat the minimum found, the search is done
+        if down and grid[0] - f[0] <= max(-f[k], 0.0) + 1e-14 * np.sqrt(r.V_max):
+            break
+        if (grid[0] <= lo_end) if down else (grid[-1] >= hi_end):
+            raise SolverError(
+                f"the pull-off's minimum of p_rep - p_att lies {'below' if down else 'above'} p_rep = "
+                f"{grid[k]:.3g} ({grid[k] / np.sqrt(r.V_max):.3g} sqrt(V)), the end of the loads where the "
+                "theory's gaps are finite; the pull-off is not reported from the edge"
+            )
+        new = grid[0] * step ** -np.arange(20, 0, -1) if down else grid[-1] * step ** np.arange(1, 21)
+        f_new = new - _p_att(r, new, inter)
+        grid, f = (np.concatenate((new, grid)), np.concatenate((f_new, f))) if down else (
+            np.concatenate((grid, new)), np.concatenate((f, f_new)))  # fmt: skip
+        k = int(np.argmin(f))
     lo, hi = np.log(grid[max(k - 1, 0)]), np.log(grid[min(k + 1, grid.size - 1)])
     res = minimize_scalar(
         lambda t: float(np.exp(t) - _p_att(r, np.array([np.exp(t)]), inter)[0]),

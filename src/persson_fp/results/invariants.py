@@ -16,16 +16,9 @@ from types import MappingProxyType
 
 import numpy as np
 
+from persson_fp._errors import InstabilityError, SolverError
+
 __all__ = ["SolverError", "InstabilityError", "DEFAULT_TOLERANCES", "check_invariants"]
-
-
-class SolverError(RuntimeError):
-    """A solver could not produce a trustworthy result: it failed, or its result breaks an invariant
-    (:func:`~persson_fp.results.solution.check_invariants`); the message names the invariant and the remedy."""
-
-
-class InstabilityError(SolverError):
-    """The discrete evolution went unstable (NaN, negative or growing mass, blow-up)."""
 
 
 DEFAULT_TOLERANCES = MappingProxyType({"load": 1e-2, "area": 1e-6, "negative": 1e-2})

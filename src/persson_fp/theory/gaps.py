@@ -180,15 +180,20 @@ class GapDistribution:
         in_lump = np.arange(n_b)[None, :] < cut_at[:, None]
         W0 = np.sum(np.where(in_lump, w, 0.0), axis=1)
         raw = Au[:, 0] - Au[rows, cut_at]  # = its share of the mean separation (telescoped; w = 0 bins included)
-        c_first = c[rows, cut_at]
+        # the first resolved bin is the first one from cut_at on that holds mass: a bin of zero width (two stations
+        # at the same zeta or area, e.g. zeta(A_top) rounding onto a log station at tiny loads) has no centre (its
+        # c is a placeholder 0), and the lump -- the widest gaps -- would be put at u = 0
+        idx = np.arange(n_b)[None, :]
+        first = np.min(np.where((w > 0) & (idx >= cut_at[:, None]), idx, n_b - 1), axis=1)
+        c_first = c[rows, first]
         self.truncated_weight = W0
         self.truncation_shift = raw - W0 * c_first
         c = np.where(in_lump, c_first[:, None], c)
-        hb = np.where(in_lump, hb[rows, cut_at][:, None], hb)
+        hb = np.where(in_lump, hb[rows, first][:, None], hb)
         # the lump is one component: its mass on the first bin, the others emptied (fewer terms downstream)
         w = np.where(in_lump, 0.0, w)
         w[:, 0] = W0
-        c[:, 0], hb[:, 0] = c_first, hb[rows, cut_at]
+        c[:, 0], hb[:, 0] = c_first, hb[rows, first]
         keep = w > 0
         self.weights = np.where(keep, w, 0.0)
         self.centres = np.where(keep, np.maximum(c, 0.0), 0.0)
