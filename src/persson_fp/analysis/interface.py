@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from persson_fp.analysis.exact import exact
 from persson_fp.problems.contact import ContactProblem
@@ -321,6 +320,8 @@ def adhesive_contact(problem, interaction, weighting: str = "yang-persson", rho=
     k = int(np.argmin(f))
     at_edge = k in (0, grid.size - 1)
     lo, hi = np.log(grid[max(k - 1, 0)]), np.log(grid[min(k + 1, grid.size - 1)])
+    from scipy.optimize import minimize_scalar  # here, not at the top: keeps `import persson_fp` light
+
     res = minimize_scalar(
         lambda t: float(np.exp(t) - _p_att(r, np.array([np.exp(t)]), inter)[0]),
         bounds=(lo, hi),
