@@ -21,7 +21,8 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   beta A_pl lifted, the same kind of march (:mod:`persson_fp.solvers.chebyshev.wall`, which has its own estimate).
 
 Every station starts afresh from the small-time expansion at V0 = V0_fraction x V (with the coefficients at V0/2
-on the Magnus path, the midpoint of [0, V0]; images across both walls).
+on the Magnus path, the midpoint of [0, V0]; images across both walls).  With a hardness, what the yield wall
+absorbed before V0 (the start's image across it: all of the load for a p_bar at sigma_Y) is part of A_pl.
 
 Error estimate (``info["error_estimate"]``, per station and load; an area's is never below the L1 estimate,
 which bounds it): the differences from a partner run at 3/4 of the degree (the grid) and from one started at 4 V0
@@ -78,7 +79,9 @@ class ChebyshevSolver(Solver):
         grows ~5-8x a decade of tol (``benchmarks/results/general_engine_wide.md``: 1e-4 / 1e-5 / 1e-6 in 0.10 /
         0.73 / 4.0 s on ``B2 = V'(1 + 0.2 (p/p_bar) ln zeta)``).
     n_p : int or None
-        A fixed polynomial degree in [8, 1000] (no adaptation; the estimate is still reported).
+        A fixed polynomial degree in [8, 1000] (no adaptation; the estimate is still reported).  With an explicit
+        ``tol`` as well, a run whose estimate exceeds it is a :class:`~persson_fp.SolverError` (not on a moving
+        wall, where ``tol`` with a fixed ``n_p`` sets the march and the start only).
     V0_fraction : float or None
         Start V0 / V(station) in (0, 0.1] (every station starts afresh from the delta); default from ``tol``.
     k_domain : float or None
