@@ -173,6 +173,15 @@ def test_overhead_quick(tmp_path):
     assert "ratio to erf" in (tmp_path / "overhead.md").read_text()
 
 
+def test_import_time_quick(tmp_path):
+    """The import-time table is written, the light import loads no heavy scipy part (times reported, not asserted)."""
+    rows, summary = _module("import_time").main(["--quick", "--output", str(tmp_path)])
+    assert len(_rows(tmp_path / "import_time.csv")) == len(rows) == 6
+    assert summary["persson_fp"] > 0
+    assert all(r["heavy_scipy_loaded"] == "" for r in rows)
+    assert "ratio to baseline" in (tmp_path / "import_time.md").read_text()
+
+
 @pytest.mark.slow
 def test_batch_scaling_quick(tmp_path):
     """Every method answers the batches; the areas agree with pf.exact (times and memory recorded only)."""

@@ -4,7 +4,17 @@ The contact-pressure PDF obeys ``E:diffusion_equ`` of the Xu et al. tutorial,
 dP0/dzeta = 1/2 B2(zeta) d^2P0/dp^2 with an absorbing wall at p = 0; this
 package gives its exact solution (:func:`exact`), the spectrum and fudge-factor
 physics around it, and numerical solvers behind :func:`solve`.
+
+Importing the package loads numpy, ``scipy.special`` and the light modules only: the calibration and the sweeps
+(and through them ``scipy.optimize`` and ``scipy.stats``), the solver families, the plotting and the optional
+extras load when first used.  Their public names (:func:`calibrate`, :func:`sweep`, ...) are resolved on first
+access by the module-level ``__getattr__`` below, so ``from persson_fp import calibrate`` works as before.
 """
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
 
 from persson_fp._version import __version__
 from persson_fp.analysis.energy import elastic_energy, pressure_spectrum
@@ -17,7 +27,6 @@ from persson_fp.analysis.interface import (
     leak_rate,
 )
 from persson_fp.analysis.separation import contact_stiffness, mean_separation
-from persson_fp.calibration import Calibration, ModelSelection, calibrate
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.problems.fokker_planck import FokkerPlanckProblem
 from persson_fp.results.solution import Comparison, InstabilityError, Solution, SolverError
@@ -27,10 +36,6 @@ from persson_fp.surfaces.heightmap import MeasuredSurface, psd_from_heightmap, p
 from persson_fp.surfaces.psd import PSD, SelfAffinePSD
 from persson_fp.surfaces.readers import from_surface_topography, read_contact_engineering_csv, read_heightmap
 from persson_fp.surfaces.tabulated import TabulatedPSD
-from persson_fp.sweeps.quantities import QUANTITIES, register_quantity
-from persson_fp.sweeps.run import SweepError, sweep
-from persson_fp.sweeps.table import SweepResult
-from persson_fp.sweeps.table import read_table as read_sweep_table
 from persson_fp.theory import adhesion, fudge, hardness
 from persson_fp.theory.effective import EffectiveVariance, effective_variance
 from persson_fp.theory.gaps import GapDistribution
@@ -99,3 +104,69 @@ __all__ = [
     "Calibration",
     "ModelSelection",
 ]
+
+# Public names whose modules are heavy (scipy.optimize, scipy.stats): name -> (defining module, attribute there).
+_LAZY: dict[str, tuple[str, str]] = {
+    "sweep": ("persson_fp.sweeps.run", "sweep"),
+    "SweepError": ("persson_fp.sweeps.run", "SweepError"),
+    "SweepResult": ("persson_fp.sweeps.table", "SweepResult"),
+    "QUANTITIES": ("persson_fp.sweeps.quantities", "QUANTITIES"),
+    "register_quantity": ("persson_fp.sweeps.quantities", "register_quantity"),
+    "read_sweep_table": ("persson_fp.sweeps.table", "read_table"),
+    "calibrate": ("persson_fp.calibration.fit", "calibrate"),
+    "Calibration": ("persson_fp.calibration.result", "Calibration"),
+    "ModelSelection": ("persson_fp.calibration.select", "ModelSelection"),
+}
+# Subpackages that were attributes of the package after ``import persson_fp`` and now load on first access.
+_LAZY_SUBMODULES = frozenset({"calibration", "sweeps"})
+
+if TYPE_CHECKING:  # what the static tools see; at run time these load on first access
+    from persson_fp import calibration as calibration
+    from persson_fp import sweeps as sweeps
+    from persson_fp.calibration.fit import calibrate
+    from persson_fp.calibration.result import Calibration
+    from persson_fp.calibration.select import ModelSelection
+    from persson_fp.sweeps.quantities import QUANTITIES, register_quantity
+    from persson_fp.sweeps.run import SweepError, sweep
+    from persson_fp.sweeps.table import SweepResult
+    from persson_fp.sweeps.table import read_table as read_sweep_table
+
+
+def __getattr__(name: str) -> Any:
+    """Load a heavy public name (or subpackage) on its first access and keep it in the package's namespace.
+
+    Parameters
+    ----------
+    name : str
+        The attribute asked of the package.
+
+    Returns
+    -------
+    object
+        The object defined under that name in its own module (the same object, not a copy).
+
+    Raises
+    ------
+    AttributeError
+        If the package has no such name.
+    """
+    if name in _LAZY:
+        module, attr = _LAZY[name]
+        value = getattr(importlib.import_module(module), attr)
+    elif name in _LAZY_SUBMODULES:
+        value = importlib.import_module(f"{__name__}.{name}")
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    """The package's names, those loaded on first access included.
+
+    Returns
+    -------
+    list of str
+        The sorted names of the namespace, the public names and the lazily loaded subpackages.
+    """
+    return sorted(set(globals()) | set(_LAZY) | _LAZY_SUBMODULES)

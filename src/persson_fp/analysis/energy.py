@@ -11,7 +11,6 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.integrate import quad_vec
 
 from persson_fp._validate import as_float_array, as_positive_scalar
 from persson_fp.analysis.exact import _check_problem
@@ -134,6 +133,8 @@ def elastic_energy(problem: ContactProblem, zeta: float | None = None, epsrel: f
         pts.append(np.log(q_r))
     if hasattr(psd, "q"):  # tabulated: the kinks of the interpolant
         pts.extend(np.log(psd.q[(psd.q > np.exp(lo)) & (psd.q < np.exp(hi))]).tolist())
+    from scipy.integrate import quad_vec  # here, not at the top: keeps `import persson_fp` light
+
     val, _err = quad_vec(integrand, lo, hi, epsrel=epsrel, epsabs=0.0, points=pts or None, limit=2000)
     out = 0.5 * np.pi * (1.0 if scaled else E_eff) * np.asarray(val)
     return out[0] if problem.scalar_load else out

@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from persson_fp._errors import SolverError
 from persson_fp.analysis.exact import exact
@@ -357,6 +356,8 @@ def adhesive_contact(problem, interaction, weighting: str = "yang-persson", rho=
             np.concatenate((grid, new)), np.concatenate((f, f_new)))  # fmt: skip
         k = int(np.argmin(f))
     lo, hi = np.log(grid[max(k - 1, 0)]), np.log(grid[min(k + 1, grid.size - 1)])
+    from scipy.optimize import minimize_scalar  # here, not at the top: keeps `import persson_fp` light
+
     res = minimize_scalar(
         lambda t: float(np.exp(t) - _p_att(r, np.array([np.exp(t)]), inter)[0]),
         bounds=(lo, hi),

@@ -28,8 +28,6 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.integrate import solve_ivp
-from scipy.interpolate import CubicHermiteSpline
 from scipy.special import erf
 
 from persson_fp.theory.fudge import FudgeFactor, NoFudge
@@ -67,6 +65,9 @@ class EffectiveVariance:
             u = np.exp(w)
             A = erf(np.exp(-0.5 * w) / np.sqrt(2.0))
             return np.exp(s) / u * fudge.S(A)
+
+        from scipy.integrate import solve_ivp  # here, not at the top: keeps `import persson_fp` light
+        from scipy.interpolate import CubicHermiteSpline
 
         sol = solve_ivp(rhs, (s0, s1), [np.log(_U0)], method="DOP853", rtol=_RTOL, atol=_RTOL, dense_output=True)
         if not sol.success:  # pragma: no cover - a positive finite S always integrates

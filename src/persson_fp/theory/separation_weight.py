@@ -7,7 +7,6 @@ r"""The energy weighting of Persson's mean separation with a fudge factor: :math
 from __future__ import annotations
 
 import numpy as np
-from scipy.interpolate import CubicHermiteSpline
 from scipy.special import erf
 
 from persson_fp.theory import fudge as _fudge
@@ -22,6 +21,8 @@ class _Weight:
     """omega(y), omega'(y) and the table of g(y) of one fudge model and weighting."""
 
     def __init__(self, fudge, weighting):
+        from scipy.interpolate import CubicHermiteSpline  # here, not at the top: keeps `import persson_fp` light
+
         self.fudge = fudge
         self.plain = weighting == "yang-persson" or isinstance(fudge, _fudge.NoFudge)
         self.ev = None if self.plain else effective_variance(fudge)

@@ -42,8 +42,6 @@ This module imports no solver.
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.interpolate import PchipInterpolator
 from scipy.special import erf, erfc
 
 __all__ = ["strip_pdf", "strip_cdf", "strip_quantities", "strip_areas", "StripEffectiveVariance"]
@@ -246,6 +244,8 @@ class StripEffectiveVariance:
 
         s0, s1 = np.log(self.V0), np.log(self.V_max)
         w0 = np.log(S1 * self.V0) * np.ones(self.p_bar.shape)
+        from scipy.integrate import solve_ivp  # here, not at the top: keeps `import persson_fp` light
+
         sol = solve_ivp(rhs, (s0, s1), w0, method="DOP853", rtol=1e-12, atol=1e-13, dense_output=True)
         if not sol.success:  # pragma: no cover - DOP853 on a smooth bounded rhs
             raise RuntimeError(f"effective variance of the strip: {sol.message}")
@@ -270,6 +270,8 @@ class StripEffectiveVariance:
 
     def V_of_tau(self, tau) -> np.ndarray:
         """The inverse map at one tau per load (``tau`` of shape (..., n_loads)), ~1e-8 relative."""
+        from scipy.interpolate import PchipInterpolator  # here, not at the top: keeps `import persson_fp` light
+
         tau = np.asarray(tau, dtype=float)
         flat = tau.reshape(-1, self.p_bar.size)
         res = np.empty(flat.shape)

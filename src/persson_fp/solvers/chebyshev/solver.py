@@ -21,7 +21,8 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   beta A_pl lifted, the same kind of march (:mod:`persson_fp.solvers.chebyshev.wall`, which has its own estimate).
 
 Every station starts afresh from the small-time expansion at V0 = V0_fraction x V (with the coefficients at V0/2
-on the Magnus path, the midpoint of [0, V0]; images across both walls).
+on the Magnus path, the midpoint of [0, V0]; images across both walls).  With a hardness, what the yield wall
+absorbed before V0 (the start's image across it: all of the load for a p_bar at sigma_Y) is part of A_pl.
 
 Error estimate (``info["error_estimate"]``, per station and load; an area's is never below the L1 estimate,
 which bounds it): the differences from a partner run at 3/4 of the degree (the grid) and from one started at 4 V0
@@ -78,7 +79,9 @@ class ChebyshevSolver(Solver):
         grows ~5-8x a decade of tol (``benchmarks/results/general_engine_wide.md``: 1e-4 / 1e-5 / 1e-6 in 0.10 /
         0.73 / 4.0 s on ``B2 = V'(1 + 0.2 (p/p_bar) ln zeta)``).
     n_p : int or None
-        A fixed polynomial degree in [8, 1000] (no adaptation; the estimate is still reported).
+        A fixed polynomial degree in [8, 1000] (no adaptation; the estimate is still reported).  With an explicit
+        ``tol`` as well, a run whose estimate exceeds it is a :class:`~persson_fp.SolverError` (not on a moving
+        wall, where ``tol`` with a fixed ``n_p`` sets the march and the start only).
     V0_fraction : float or None
         Start V0 / V(station) in (0, 0.1] (every station starts afresh from the delta); default from ``tol``.
     k_domain : float or None
@@ -96,7 +99,7 @@ class ChebyshevSolver(Solver):
 
     def validate(self) -> None:
         o, pr = self.opts, self.problem
-        tol_given = o["tol"] is not None
+        tol_given = self._tol_given = o["tol"] is not None  # (a fixed n_p must then meet it, or is refused)
         o["tol"] = check_float(o["tol"], "tol", 1e-13, 1e-1) if tol_given else self.DEFAULT_TOL
         if o["n_p"] is not None:
             o["n_p"] = check_int(o["n_p"], "n_p", 8, 1000)
@@ -139,10 +142,13 @@ class ChebyshevSolver(Solver):
 
         pbar = float(np.max(pr.p_bar))
         need = k * math.sqrt(V)
+        push = 0.0  # the drift's push outwards, in the Lamperti distance
         if self._cf.drift:  # a drift moves the PDF by about c V: widen by the largest push outwards
             probe = np.linspace(0.0, pr.p_max(2.0 * k), 65)
             bb, cc = self._cf.envelope(probe)
-            need += max(0.0, float(np.max(cc / np.sqrt(np.maximum(bb, 1e-300))))) * V
+            with np.errstate(over="ignore", invalid="ignore"):
+                push = max(0.0, float(np.max(cc / np.sqrt(np.maximum(bb, 1e-300))))) * V
+            need += push
         b_at = b(np.asarray(pr.p_bar, dtype=float))
         if not np.all(b_at > 1e-300):  # (no spreading from the load: the domain rule below would only run away)
             raise ValueError(
@@ -160,6 +166,14 @@ class ChebyshevSolver(Solver):
             if float(collocation.lamperti_distance(b, np.array(pbar), np.array(hi))) >= need:
                 return hi, k
             hi = pbar + 1.5 * (hi - pbar)
+        if not push <= k * math.sqrt(V):  # the drift, not the diffusion, sets the far wall (NaN and inf included)
+            raise ValueError(
+                "method 'chebyshev': B1 (the drift) is so large that it pushes the pressure outwards by about "
+                f"max(B1 / sqrt(B2 dV/dzeta)) V = {push:.3g} in the Lamperti distance int dp / sqrt(B2 / "
+                f"(dV/dzeta)) by V = {V:.3g}, beyond any far wall the domain rule reaches (the diffusion's own "
+                f"width is {k:.3g} sqrt(V) = {k * math.sqrt(V):.3g}); the answer depends on the far wall -- check "
+                "the size and units of B1 (pressure per unit zeta)"
+            )
         raise ValueError(
             "method 'chebyshev': B2 grows so fast in p (faster than p^2) that the pressure reaches any far wall in "
             f"finite V: int dp / sqrt(B2 / (dV/dzeta)) from p_bar to infinity is below {need:.3g} (k_domain = "
@@ -202,7 +216,10 @@ class ChebyshevSolver(Solver):
             unresolved[k] = np.abs(mass0 - mass_ref)
             # and is the start itself sound?  Its mass against the drift-free images' (exact for constant b, c = 0)
             s0 = np.sqrt(b_at * t0)
-            m_img = ndtr(pb / s0) - ndtr(-pb / s0) - (0.0 if wall is None else ndtr(-(wall - pb) / s0))
+            m_img = ndtr(pb / s0) - ndtr(-pb / s0)  # in [0, inf): the delta less its image across p = 0
+            if wall is not None:  # in [0, sigma_Y]: less the mass above the wall and the image across it there
+                d = wall - pb
+                m_img = m_img - (ndtr((wall + pb) / s0) - ndtr(d / s0)) - (ndtr(-d / s0) - ndtr(-(wall + d) / s0))
             if not np.all(np.abs(mass_ref - m_img) <= 0.05):
                 raise ValueError(
                     "method 'chebyshev': the small-time start at V0 is not valid here (its mass "
@@ -247,6 +264,12 @@ class ChebyshevSolver(Solver):
             far[k] = np.maximum(out_far, 0.0)
             # the first-moment law: the load the solution must carry (with a hardness: elastic + sigma_Y A_pl)
             law[k] = load0 + moment - (0.0 if self._sigma is not None else p_max[k] * out_far)
+            if wall is not None:  # what the wall absorbed before V0 (the start lacks it: all of it for a load at
+                # the wall), from the start's image across it: 2 Phi(-y_w / sqrt(t0)), y_w the Lamperti distance
+                y_w = collocation.lamperti_distance(lambda q, Vs=V_start: cf.at(q, Vs)[0], pb, wall)
+                early = 2.0 * ndtr(-y_w / math.sqrt(t0))
+                far[k] += early
+                law[k] += self._sigma * early
             balance[k] = mass0 - np.sum(P * grid.w, axis=-1) - out0 - out_far  # what left = what crossed a wall
             if out is None:
                 out = np.zeros((self.V_out.size,) + P.shape)
@@ -300,7 +323,14 @@ class ChebyshevSolver(Solver):
         if self.path == "clock":
             V_start, t0 = None, cf.tau(0.0, V0)
         b_at = cf.at(pb, V_start)[0]
-        grid = collocation.chebyshev_grid(n, p_max, pb, 3.0 * np.sqrt(b_at * t0)) if np.all(b_at > 0) else None
+        if not np.all(b_at > 0):
+            return V0, V_start, t0, b_at, None
+        eps = 3.0 * np.sqrt(b_at * t0)
+        # the cluster no closer to a wall than its width: a load within a few start widths of a wall (a hardness
+        # just above p_bar) starts as the images' difference, smooth on that width, and a cluster on the wall,
+        # on top of the Chebyshev ends' own, would shrink the closest spacing ~n-fold (and blow up ||L||)
+        centre = np.clip(pb, np.minimum(eps, 0.5 * p_max), np.maximum(p_max - eps, 0.5 * p_max))
+        grid = collocation.chebyshev_grid(n, p_max, centre, eps)
         return V0, V_start, t0, b_at, grid
 
     def _floor_at(self, n, frac, p_max):
@@ -404,6 +434,13 @@ class ChebyshevSolver(Solver):
             est["noncontact_area"] = np.maximum(est["noncontact_area"], est["L1"] + est["plastic_area"])
             worst = max(float(np.max(est[q])) for q in ("L1", "contact_area", "plastic_area", "noncontact_area"))
             if o["n_p"] is not None or worst <= tol:
+                if o["n_p"] is not None and self._tol_given and worst > tol:  # a fixed degree is not raised
+                    from persson_fp.results.invariants import SolverError
+
+                    raise SolverError(
+                        f"chebyshev: n_p = {n} cannot meet tol = {tol:.3g}: the error estimate at that fixed degree "
+                        f"is {worst:.2e}; leave n_p out (the degree then adapts to tol), raise it, or leave tol out"
+                    )
                 break
             if best is not None and worst > best and float(np.max(floor)) >= 0.3 * worst:
                 self._unreachable(tol, n, float(np.max(floor)), best, p_max)  # a higher degree raised the error
