@@ -801,3 +801,42 @@ def test_gap_bins_sit_where_the_magnification_puts_them(H, fudge, decades):
 def test_pull_off_against_brute_force_over_random_laws(H, w, rho):
     """As the parametrised test, over random spectra and exponential laws."""
     test_pull_off_is_the_brute_force_minimum_wherever_it_lies(H, w, rho)
+
+
+def _separation_agreement(H, fudge, roll, decades):
+    psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=H, q_l=1.0, q_r=2.0 if roll else 1.0, q_s=10.0**decades)
+    sV, h_rms = float(np.sqrt(psd.V(E_star=1.0))), float(np.sqrt(psd.h2()))
+    ratio = np.geomspace(1e-8, 10.0, 40)
+    pr = pf.ContactProblem(psd, 1.0, ratio * sV, fudge=fudge)
+    u_ref = pf.mean_separation(pr)  # Persson (2007) by its own quadrature (MeanSeparation, ~1e-10)
+    err = np.abs(np.asarray(pf.gap_distribution(pr).mean_separation) - u_ref)
+    light, middle, heavy = ratio < 1e-3, (ratio >= 1e-3) & (ratio <= 3.0), ratio > 3.0
+    assert np.all(err[light] <= 2e-4 * u_ref[light])
+    assert np.all(err[middle] <= 3e-5 * u_ref[middle])
+    assert np.all(err[heavy] <= 1e-9 * h_rms)
+
+
+@settings(max_examples=6, deadline=None)
+@given(
+    H=st.floats(0.05, 1.0),
+    fudge=st.sampled_from([None, "YP08", "WM17", "Xu24"]),
+    roll=st.booleans(),
+    decades=st.floats(1.0, 6.0),
+)
+def test_gap_mean_separation_within_the_stated_agreement(H, fudge, roll, decades):
+    """The gap distribution's mean separation against Persson's closed-form quadrature over loads 1e-8 to 10
+    sqrt(V), within what the MagnificationResolved docstring states."""
+    _separation_agreement(H, fudge, roll, decades)
+
+
+@pytest.mark.slow
+@settings(max_examples=60, deadline=None)
+@given(
+    H=st.floats(0.05, 1.0),
+    fudge=st.sampled_from([None, "YP08", "WM17", "Xu24"]),
+    roll=st.booleans(),
+    decades=st.floats(1.0, 6.0),
+)
+def test_gap_mean_separation_within_the_stated_agreement_wide(H, fudge, roll, decades):
+    """As above, over more spectra."""
+    _separation_agreement(H, fudge, roll, decades)

@@ -95,8 +95,8 @@ class GapDistribution:
         Stations uniform in A, in [8, 1e6].
     n_zeta : int
         Extra stations log-uniform in ζ, in [8, 1e6]: they resolve :math:`h_\zeta` near :math:`\zeta_{max}`.
-        Together with the loads they must fit :data:`MEMORY_BUDGET` (:func:`memory_estimate`: about
-        384 bytes a load and station), else ``ValueError`` with the estimate.
+        Together with the loads they must fit the module's ``MEMORY_BUDGET`` (4 GiB; its ``memory_estimate``:
+        about 384 bytes a load and station), else ``ValueError`` with the estimate.
     weight_cut : float
         Fraction of the non-contact area, lost first (ζ near 1), whose gap is not resolved (module docstring);
         in [1e-12, 0.01].

@@ -104,9 +104,14 @@ class MagnificationResolved:
     :math:`10^{-8}` of :math:`\bar u` or has :math:`g < e^{-45}`), in six equal panels split again at every kink of
     :math:`q(\sigma)` inside: the roll-off :math:`q_r`, or a tabulated spectrum's knots, where C changes power law
     (Gauss-Legendre, 8 nodes a panel; 4 on a tabulated spectrum's many short ones).  Against
-    :class:`~persson_fp.MeanSeparation` (tests): :math:`\bar u(1)` to 3e-5 relative on a self-affine spectrum (3e-6
-    measured); and :math:`\bar u(\zeta)` on a measured (tabulated, 64-shell) spectrum against adaptive quadrature in q
-    split at the knots (tests: 2e-6 measured over loads 1e-3 to 1 sqrt(V) and ζ up to 20; it was 2e-3 before the
+    :class:`~persson_fp.MeanSeparation` (tests, random self-affine spectra with H from 0.05 to 1, q_s/q_l to 1e6,
+    with and without roll-off, every fudge model): :math:`\bar u(1)` to 3e-5 relative at loads from 1e-3 to
+    3 :math:`\sqrt{V}` (1.5e-5 measured), to 2e-4 relative at light loads from 1e-8 to 1e-3 :math:`\sqrt{V}` (8e-5
+    measured, 6e-4 of the rms height: the six panels span eight decades of :math:`\sigma` there), and above
+    3 :math:`\sqrt{V}`, where :math:`\bar u` is below 1e-9 of the rms height, to 1e-9 of the rms height
+    absolute (2e-10 measured; the cut-off at :math:`y = 10` gives 0 where the closed form gives ~1e-29); and
+    :math:`\bar u(\zeta)` on a measured (tabulated, 64-shell) spectrum against adaptive quadrature in q split at the
+    knots (tests: 2e-6 measured over loads 1e-3 to 1 sqrt(V) and ζ up to 20; it was 2e-3 before the
     split).
 
     Parameters
