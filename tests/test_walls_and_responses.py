@@ -154,6 +154,7 @@ def test_the_problem_carries_its_walls(h):
     low, up = pr.walls
     assert isinstance(low, walls.AbsorbingWall) and float(low.sigma(3.0)) == 0.0
     assert up is pr.upper_wall
+    assert np.array_equal(pr.conserved_load, pr.p_bar)  # the load balance (eq:Load_equilibrium) with any wall
     zeta = np.geomspace(1.0, pr.zeta_max, 7)
     sigma = np.inf if h is None else (h if isinstance(h, float) else h.sigma_1 * zeta**h.n)
     assert np.allclose(pr.sigma_Y(zeta), sigma, rtol=1e-14)
@@ -219,6 +220,7 @@ def test_a_general_problem_is_refused_by_name():
     ref = pf.ContactProblem.reference()
     pr = pf.FokkerPlanckProblem(ref.psd, p_bar=ref.p_bar[0], B1=lambda p, z: 0.0 * p)
     assert pr.features == {"general"}
+    assert pr.conserved_load is None  # a drift moves the load: the solver's first-moment law is the reference
     with pytest.raises(ValueError, match="general Fokker-Planck coefficients"):
         pr.require_closed_form()
     with pytest.raises(ValueError, match="general coefficients.*use a ContactProblem"):
@@ -231,3 +233,19 @@ def test_hints_name_exactly_the_methods_that_support_a_feature(feature):
     expected = [name for name in METHODS if name not in EXTRAS and feature in get_solver(name).SUPPORTS]
     got = supporting(feature)
     assert [g.split("'")[1] for g in got] == expected
+
+
+@settings(max_examples=15, deadline=None)
+@given(hardness, st.sampled_from([None, "YP08", "WM17", "Xu24"]), st.floats(0.1, 0.55))
+def test_the_elastic_counterpart_drops_the_wall_and_keeps_the_rest(h, fudge, ratio):
+    """The purely elastic problem of the same surface, response, loads and fudge: its tau(V) is the open map of the
+    fudge factor (Xu et al. tutorial, Eq. 'eq:new_B2'), the same as a problem built without a hardness."""
+    pr = pf.ContactProblem.reference(p_bar_ratio=[ratio, 2 * ratio], fudge=fudge, hardness=h)
+    el = pr.elastic_counterpart()
+    plain = pf.ContactProblem.reference(p_bar_ratio=[ratio, 2 * ratio], fudge=fudge)
+    assert isinstance(el.upper_wall, walls.OpenEnd) and el.features == frozenset()
+    assert el.response == pr.response and np.array_equal(el.p_bar, pr.p_bar) and el.fudge.name == pr.fudge.name
+    V = np.geomspace(1e-6, 1.0, 5) * plain.V_max
+    np.testing.assert_array_equal(el.tau_of_V(V), plain.tau_of_V(V))
+    stiff = pr.with_response(LongWaveStiffened(1.0, 0.3)).elastic_counterpart()
+    assert isinstance(stiff.response, LongWaveStiffened) and stiff.V_max == pytest.approx(V_oracle(pr.psd, 1.0, 0.3))
