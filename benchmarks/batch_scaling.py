@@ -1,4 +1,4 @@
-"""Batches of loads (issue 16): time and peak memory of one call for 1 -> 1e4 loads, BLAS threads 1 vs the library's.
+"""Batches of loads: time and peak memory of one call for 1 -> 1e4 loads, BLAS threads 1 vs the library's.
 
 For the reference surface with the Yang--Persson fudge factor and loads p_bar / sqrt(V) log-spaced on
 [1e-3, 3], each method answers every load in one call at its default settings: ``pf.exact(problem).contact_area``

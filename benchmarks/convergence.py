@@ -1,4 +1,4 @@
-"""Observed orders of convergence in p and in the step of every scheme (issue 5).
+"""Observed orders of convergence in p and in the step of every scheme.
 
 On the reference problem (no fudge factor; p_bar = 0.5 sqrt(V)), L1 of P0 at zeta_max against
 ``pf.exact``:

@@ -1,4 +1,4 @@
-r"""General coefficients (issue 21): time to reach an L1 accuracy, persson-fp's engines against a hand-written
+r"""General coefficients: time to reach an L1 accuracy, persson-fp's engines against a hand-written
 Crank--Nicolson, py-pde and FiPy, whole calls.
 
 Two scenes on the reference problem (``pf.ContactProblem.reference()``, p_bar = 0.5 sqrt(V(zeta_max))), both as

@@ -1,4 +1,4 @@
-r"""Beyond the separable form (issue 21, part 2): whole-call time against accuracy for a zeta-dependent problem, a
+r"""Beyond the separable form: whole-call time against accuracy for a zeta-dependent problem, a
 genuinely non-separable one and a constant hardness -- method "chebyshev" against "fv" and "mol".
 
 Scenes (the reference problem's spectrum, ``pf.ContactProblem.reference()``):

@@ -47,7 +47,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from _common import machine, markdown_table, outdir, parser, write_csv  # noqa: E402
 
 TARGET_RATIO = 20.0
-"""Issue 16: pf.exact for one load within 20x a bare erf call on a 1-element array."""
+"""pf.exact for one load within 20x a bare erf call on a 1-element array."""
 
 
 def per_call(fn, n: int) -> float:

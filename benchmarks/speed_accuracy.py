@@ -410,7 +410,7 @@ def main(argv=None):
         f"Command: `python benchmarks/speed_accuracy.py{' --quick' if args.quick else ''}`; repeats {repeats} "
         "(at most 3 for calls > 1 s, 1 for calls > 10 s: column `repeats` of speed_accuracy.csv)\n"
         + md
-        + "\n\n## Targets (issue 5), evaluated on this run\n\n"
+        + "\n\n## Targets, evaluated on this run\n\n"
         + "\n".join(tg)
         + "\n"
     )

@@ -1,4 +1,4 @@
-"""Stability atlas of the time discretisations (issue 5).
+"""Stability atlas of the time discretisations.
 
 Reference problem (p_bar = 0.5 sqrt(V)), r = dtau / (2 dp^2) = (1/2) dB2 dzeta / dp^2 per step
 (steps uniform in the effective variance tau, so r is the same for every step).

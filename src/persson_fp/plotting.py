@@ -198,7 +198,7 @@ def plot_error_vs_time(rows: Sequence[Mapping], ax: Axes | None = None, error_ke
     return fig
 
 
-# -- helpers for the notebooks (added with issue 6) -------------------------------------------------------------------
+# -- helpers for the notebooks ----------------------------------------------------------------------------------------
 __all__ += ["plot_psd", "plot_pdf_histogram"]
 
 
@@ -294,7 +294,7 @@ def plot_pdf_histogram(
     return fig
 
 
-# -- helpers for notebooks 01, 05, 07 (issue 7) -----------------------------------------------------------------------
+# -- helpers for notebooks 01, 05, 07 ---------------------------------------------------------------------------------
 __all__ += ["plot_atom", "plot_pdf_waterfall"]
 
 
@@ -410,7 +410,7 @@ def plot_pdf_waterfall(
     return ax.figure
 
 
-# -- what happens in the gaps (issue 23) ------------------------------------------------------------------------------
+# -- what happens in the gaps -----------------------------------------------------------------------------------------
 __all__ += ["plot_gap_pdf", "plot_leak_rate"]
 
 
