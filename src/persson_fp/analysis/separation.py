@@ -24,6 +24,14 @@ def _elastic_only(problem) -> None:
     )
 
 
+def _per_load(problem, weighting: str, quantity: str):
+    """``MeanSeparation(...).<quantity>`` at the problem's loads: a float for a scalar load, else an array."""
+    _elastic_only(problem)
+    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting, response=problem.response)
+    out = getattr(ms, quantity)(problem.p_bar)
+    return float(out[0]) if problem.scalar_load else out
+
+
 def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:
     r"""Mean interfacial separation :math:`\bar u` at the loads of a contact problem.
 
@@ -49,10 +57,7 @@ def mean_separation(problem, weighting: str = "yang-persson") -> np.ndarray:
         A problem with a hardness or general coefficients (this is the elastic theory's separation; use
         :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
     """
-    _elastic_only(problem)
-    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting, response=problem.response)
-    out = ms.mean_separation(problem.p_bar)
-    return float(out[0]) if problem.scalar_load else out
+    return _per_load(problem, weighting, "mean_separation")
 
 
 def contact_stiffness(problem, weighting: str = "yang-persson") -> np.ndarray:
@@ -79,7 +84,4 @@ def contact_stiffness(problem, weighting: str = "yang-persson") -> np.ndarray:
         A problem with a hardness or general coefficients (this is the elastic theory's separation; use
         :func:`~persson_fp.separation_from_areas` with a numerical solution's areas), or a bad ``weighting``.
     """
-    _elastic_only(problem)
-    ms = MeanSeparation(problem.psd, problem.E_star, problem.fudge, weighting, response=problem.response)
-    out = ms.stiffness(problem.p_bar)
-    return float(out[0]) if problem.scalar_load else out
+    return _per_load(problem, weighting, "stiffness")

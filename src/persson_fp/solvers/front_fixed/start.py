@@ -2,8 +2,8 @@ r"""The start-up of a run of the front-fixed engine and its refusals (``"fv"``, 
 
 ``general_start`` checks the stations' resolution and asks the coefficient model
 (``persson_fp.solvers.front_fixed.models``) for a start-up Gaussian cleared of the walls (``clear_start_V``) and
-the drift's cell Peclet number at a wall (``check_wall_peclet``); ``singular_step_error`` names a drift too
-strong for the implicit step.  (General coefficients only: the homogenised start is exact.)
+the drift's cell Peclet number at a wall (``check_wall_peclet``); the model's ``singular_step_error`` names a drift
+too strong for the implicit step.  (General coefficients only: the homogenised start is exact.)
 """
 
 from __future__ import annotations
@@ -11,35 +11,10 @@ from __future__ import annotations
 import numpy as np
 
 from persson_fp.solvers.base import zeta_of
-from persson_fp.solvers.front_fixed.models import N_P_LIMIT, PECLET_MAX, START_CLEARANCE, General, model_of
+from persson_fp.solvers.front_fixed.models import N_P_LIMIT, PECLET_MAX, START_CLEARANCE, model_of
 from persson_fp.solvers.front_fixed.moving_wall import MovingWall, check_resolved
 
-__all__ = [
-    "clear_start_V",
-    "check_wall_peclet",
-    "general_start",
-    "singular_step_error",
-    "START_CLEARANCE",
-    "PECLET_MAX",
-    "N_P_LIMIT",
-]
-
-
-def clear_start_V(mw: MovingWall, V0: float) -> float:
-    """The start-up V0 of ``mw``'s grid lowered until the start is meaningful (:meth:`General.clear_start_V`;
-    unchanged for the homogenised coefficients, whose start is exact)."""
-    return mw.model.clear_start_V(mw, V0)
-
-
-def check_wall_peclet(mw: MovingWall, V0: float, name: str) -> None:
-    """``ValueError`` where the drift B1 is not resolved by the cells next to a wall
-    (:meth:`General.check_wall_peclet`; nothing to check without a drift)."""
-    mw.model.check_wall_peclet(mw, V0, name)
-
-
-def singular_step_error(name: str, pr, detail: str, p_end: float | None = None) -> ValueError:
-    """The ``ValueError`` for a drift B1 too large for the implicit step (:meth:`General.singular_step_error`)."""
-    return General().singular_step_error(name, pr, detail, p_end)
+__all__ = ["general_start", "START_CLEARANCE", "PECLET_MAX", "N_P_LIMIT"]
 
 
 def general_start(problem, stations, n: int, zeta0, k_domain: float, tau0_fraction: float, name: str):
