@@ -103,6 +103,10 @@ __all__ = [
     "calibrate",
     "Calibration",
     "ModelSelection",
+    "viscoelastic",
+    "rubber_friction",
+    "FrictionResult",
+    "sliding_contact",
 ]
 
 # Public names whose modules are heavy (scipy.optimize, scipy.stats): name -> (defining module, attribute there).
@@ -116,20 +120,27 @@ _LAZY: dict[str, tuple[str, str]] = {
     "calibrate": ("persson_fp.calibration.fit", "calibrate"),
     "Calibration": ("persson_fp.calibration.result", "Calibration"),
     "ModelSelection": ("persson_fp.calibration.select", "ModelSelection"),
+    "rubber_friction": ("persson_fp.analysis.friction", "rubber_friction"),
+    "FrictionResult": ("persson_fp.analysis.friction", "FrictionResult"),
+    "sliding_contact": ("persson_fp.problems.sliding", "sliding_contact"),
 }
+_LAZY_MODULES: dict[str, str] = {"viscoelastic": "persson_fp.theory.viscoelastic"}
 # Subpackages that were attributes of the package after ``import persson_fp`` and now load on first access.
 _LAZY_SUBMODULES = frozenset({"calibration", "sweeps"})
 
 if TYPE_CHECKING:  # what the static tools see; at run time these load on first access
     from persson_fp import calibration as calibration
     from persson_fp import sweeps as sweeps
+    from persson_fp.analysis.friction import FrictionResult, rubber_friction
     from persson_fp.calibration.fit import calibrate
     from persson_fp.calibration.result import Calibration
     from persson_fp.calibration.select import ModelSelection
+    from persson_fp.problems.sliding import sliding_contact
     from persson_fp.sweeps.quantities import QUANTITIES, register_quantity
     from persson_fp.sweeps.run import SweepError, sweep
     from persson_fp.sweeps.table import SweepResult
     from persson_fp.sweeps.table import read_table as read_sweep_table
+    from persson_fp.theory import viscoelastic as viscoelastic
 
 
 def __getattr__(name: str) -> Any:
@@ -153,6 +164,8 @@ def __getattr__(name: str) -> Any:
     if name in _LAZY:
         module, attr = _LAZY[name]
         value = getattr(importlib.import_module(module), attr)
+    elif name in _LAZY_MODULES:
+        value = importlib.import_module(_LAZY_MODULES[name])
     elif name in _LAZY_SUBMODULES:
         value = importlib.import_module(f"{__name__}.{name}")
     else:
@@ -169,4 +182,4 @@ def __dir__() -> list[str]:
     list of str
         The sorted names of the namespace, the public names and the lazily loaded subpackages.
     """
-    return sorted(set(globals()) | set(_LAZY) | _LAZY_SUBMODULES)
+    return sorted(set(globals()) | set(_LAZY) | set(_LAZY_MODULES) | _LAZY_SUBMODULES)
