@@ -260,6 +260,8 @@ def rubber_friction(
     :math:`\ln q` (5 per decade, 6 nodes; panel ends at the spectrum's kinks).  The whole evaluation is repeated with
     every rule refined twofold; the refined values are returned and their difference is ``mu_error`` and
     ``contact_area_error`` (measured below 1e-5 relative on Zener, Prony and tabulated materials at the defaults).
+    ``G`` at the nodes inside a panel comes from the panel's interpolating polynomial (about 1e-7 relative); at
+    ``q1`` (a panel's end) from its full Gauss rule.
 
     Parameters
     ----------
