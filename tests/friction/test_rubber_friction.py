@@ -24,7 +24,8 @@ def zener_phi(w, Er, Eg, tau):
 def zener_psi(w, Er, Eg, tau):
     """int_0^{2 pi} cos phi Im E(w cos phi) dphi of a Zener solid (closed form)."""
     x = w * tau
-    return 2 * np.pi * (Eg - Er) * (1 - 1 / np.sqrt(1 + x * x)) / x
+    r = np.sqrt(1 + x * x)
+    return 2 * np.pi * (Eg - Er) * x / (r * (1 + r))  # (1 - 1/r) / x without cancellation at small x
 
 
 def reference_mu(psd, Er, Eg, tau, nu, s0, v, q1, gamma=0.45):
@@ -38,15 +39,15 @@ def reference_mu(psd, Er, Eg, tau, nu, s0, v, q1, gamma=0.45):
         val = quad(f, lo, math.log(q), points=pts, limit=400, epsabs=0, epsrel=1e-11)[0]
         return val / (8 * (1 - nu**2) ** 2 * s0**2)
 
-    def integrand(lq):
-        q = math.exp(lq)
+    def integrand(t):  # ln q = ln q0 + t^2: P ~ 1/sqrt(ln(q/q0)) where G grows fast near q0 becomes smooth
+        q = psd.q_l * math.exp(t * t)
         P = erf(0.5 / math.sqrt(G(q)))
-        return 0.5 * q**4 * float(psd.C(q)) * P * (gamma + (1 - gamma) * P * P) * zener_psi(q * v, Er, Eg, tau) / (
-            (1 - nu**2) * s0
-        )
+        return 2 * t * 0.5 * q**4 * float(psd.C(q)) * P * (gamma + (1 - gamma) * P * P) * zener_psi(
+            q * v, Er, Eg, tau
+        ) / ((1 - nu**2) * s0)
 
-    pts = [b for b in (brk or []) if b < math.log(q1)] or None
-    mu = quad(integrand, lo + 1e-12, math.log(q1), points=pts, limit=400, epsrel=1e-10)[0]
+    pts = [math.sqrt(b - lo) for b in (brk or []) if b < math.log(q1)] or None
+    mu = quad(integrand, 0.0, math.sqrt(math.log(q1) - lo), points=pts, limit=400, epsrel=1e-10)[0]
     return mu, erf(0.5 / math.sqrt(G(q1)))
 
 

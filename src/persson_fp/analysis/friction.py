@@ -199,6 +199,7 @@ def _pass(psd, material, sigma0, v, aT, bT, q1, S, red_G, soft, refine):
     nu2 = 1.0 - material.nu**2
     gG = q4C * (bT * bT)[:, None] * Phi / (8.0 * sigma0 * sigma0 * (nu2 * nu2 if red_G else 1.0))
     G, G1 = rule.cumulative(gG)
+    G = np.maximum(G, 0.0)  # a running integral of a positive function: round-off never makes it negative
     with np.errstate(divide="ignore"):
         P = erf(0.5 / np.sqrt(G))
         A = erf(0.5 / np.sqrt(G1))

@@ -198,6 +198,11 @@ class AngularIntegrals:
 
 
 # -- the wavenumber rule ------------------------------------------------------------------------------------------
+BREAK_GAP = 1e-6
+"""Kinks closer than this (relative) to an end or to each other are not panel ends: a panel that narrow carries
+no weight and its nodes would coincide in floating point."""
+
+
 def breakpoints(psd, q_hi: float) -> np.ndarray:
     """The spectrum's kinks inside (q_l, q_hi): the roll-off of a self-affine spectrum, the points of a table."""
     pts = []
@@ -208,14 +213,28 @@ def breakpoints(psd, q_hi: float) -> np.ndarray:
     if isinstance(table, np.ndarray) and table.ndim == 1 and table.size <= 2000:
         pts.extend(table.tolist())
     pts = np.unique(np.asarray(pts, dtype=float))
-    return pts[(pts > psd.q_l * (1 + 1e-12)) & (pts < q_hi * (1 - 1e-12))]
+    pts = pts[(pts > psd.q_l * (1 + BREAK_GAP)) & (pts < q_hi * (1 - BREAK_GAP))]
+    if pts.size > 1:  # kinks closer than BREAK_GAP to the previous one are one kink for the rule
+        keep = np.concatenate([[True], np.diff(np.log(pts)) > BREAK_GAP])
+        pts = pts[keep]
+    return pts
+
+
+GRADING_LEVELS = 14
+"""Geometrically shrinking panels towards q0 in :class:`LnQRule` (doubled when refined, at the square root of
+:data:`GRADING_RATIO`: the same smallest panel)."""
+
+GRADING_RATIO = 0.25
+"""Width ratio of successive graded panels towards q0: the smallest is 0.25^14 ~ 4e-9 of a regular panel."""
 
 
 class LnQRule:
     r"""Gauss–Legendre panels in :math:`x = \ln q` over :math:`[q_0, q_1]`, with the running integral at every node.
 
     Panels end at the spectrum's kinks (:func:`breakpoints`) and are at most ``1/panels_per_decade`` decade wide,
-    ``m`` nodes each.  :meth:`cumulative` returns :math:`\int_{x_0}^{x_k} g\,dx` at every node :math:`x_k` (the
+    ``m`` nodes each; the first regular panel is split geometrically towards :math:`q_0` (:data:`GRADING_LEVELS`
+    panels shrinking by :data:`GRADING_RATIO`), where the contact area can fall like
+    :math:`1/\sqrt{\ln(q/q_0)}`.  :meth:`cumulative` returns :math:`\int_{x_0}^{x_k} g\,dx` at every node :math:`x_k` (the
     integration matrix of the panel's interpolating polynomial, exact for degree :math:`m-1`) and the total.
 
     Parameters
@@ -238,6 +257,14 @@ class LnQRule:
         for a, b in zip(edges[:-1], edges[1:]):
             k = max(1, math.ceil((b - a) / hmax - 1e-9))
             panels.append(a + (b - a) * np.arange(k + 1)[:-1] / k)
+        first = panels[0][1] - x0 if panels[0].size > 1 else edges[1] - x0
+        # geometric grading towards q0: G(q) grows from 0 there, so P = erf(1/(2 sqrt G)) behaves like
+        # 1/sqrt(ln q - ln q0) where G grows fast; panels shrinking by GRADING resolve it (hp refinement)
+        # refined: twice the levels at the square root of the ratio (the same smallest panel, ~1e-9 of ln q0's scale)
+        levels = GRADING_LEVELS * refine
+        graded = x0 + first * (GRADING_RATIO ** (1.0 / refine)) ** np.arange(levels, 0, -1)
+        graded = graded[graded - x0 > 1e-10 * max(1.0, abs(x0))]  # never below what floating point resolves
+        panels[0] = np.concatenate([[x0], graded, panels[0][1:]])
         left = np.concatenate(panels)
         right = np.append(left[1:], x1)
         t, w = _gauss(m)
@@ -397,10 +424,13 @@ class SlidingViscoelastic(ElasticResponse):
         """V(zeta; v), pressure^2 (Gauss–Legendre in ln q on the panels of :class:`LnQRule`)."""
         z = np.float64(psd.zeta_max) if zeta is None else check_in_range(zeta, "zeta", 1.0, psd.zeta_max)
         rule, start = self._setup(psd)
-        x = np.log(np.asarray(z, dtype=float) * psd.q_l)
+        q = np.asarray(z, dtype=float) * psd.q_l
+        x = np.log(q)
         k = np.clip(np.searchsorted(rule.left, x, side="right") - 1, 0, rule.left.size - 1)
         a = rule.left[k]
-        half = 0.5 * (x - a)
+        left_q = np.exp(a)
+        left_q = np.where(k == 0, psd.q_l, left_q)  # the first panel starts at q_l exactly
+        half = 0.5 * np.log(q / left_q)  # not x - a: no cancellation just above a panel's start
         nodes = a[..., None] + half[..., None] * (rule._t + 1.0)
         part = (self.integrand(psd, np.exp(nodes)) @ rule._w) * half
         return start[k] + part
