@@ -204,21 +204,37 @@ def test_rubber_friction_against_quadrature_property(psd, z, s0, v):
     nu2 = 1 - z.nu**2
 
     def G(q):
-        pts = [math.log(psd.q_r)] if psd.q_l < psd.q_r < q else None
+        pts = [math.log(psd.q_r)] if psd.q_l * (1 + 1e-6) < psd.q_r < q else None
         f = lambda x: math.exp(4 * x) * float(psd.C(math.exp(x))) * float(zener_phi_psi(math.exp(x) * v, z)[0])
-        return quad(f, math.log(psd.q_l), math.log(q), points=pts, limit=300, epsrel=1e-11)[0] / (
-            8 * nu2**2 * sigma0**2
-        )
+        a, b = math.log(psd.q_l), math.log(q)
+        if b - a < 1e-7:  # G grows linearly from q0: the trapezoid is exact to 1e-14 there
+            return 0.5 * (f(a) + f(b)) * (b - a) / (8 * nu2**2 * sigma0**2)
+        return quad(f, a, b, points=pts, limit=300, epsrel=1e-11)[0] / (8 * nu2**2 * sigma0**2)
 
     def integrand(t):  # in t with ln q = ln q0 + t^2: P ~ 1/sqrt(ln(q/q0)) near q0 becomes smooth
         q = psd.q_l * math.exp(t * t)
-        P = erf(0.5 / math.sqrt(G(q)))
-        return 2 * t * 0.5 * q**4 * float(psd.C(q)) * P * (0.45 + 0.55 * P * P) * float(
-            zener_phi_psi(q * v, z)[1]
-        ) / (nu2 * sigma0)
+        Gq = G(q)
+        P = erf(0.5 / math.sqrt(Gq)) if Gq > 0 else 1.0
+        return (
+            2
+            * t
+            * 0.5
+            * q**4
+            * float(psd.C(q))
+            * P
+            * (0.45 + 0.55 * P * P)
+            * float(zener_phi_psi(q * v, z)[1])
+            / (nu2 * sigma0)
+        )
 
-    pts = [math.sqrt(math.log(psd.q_r / psd.q_l))] if psd.q_l < psd.q_r < psd.q_s else None
-    mu = quad(integrand, 0.0, math.sqrt(math.log(psd.zeta_max)), points=pts, limit=500, epsrel=1e-10)[0]
+    # quad over sub-intervals growing geometrically from q0 (one call over the whole range can miss the steep part
+    # near q0 while reporting 1e-10), the roll-off among the ends
+    t_end = math.sqrt(math.log(psd.zeta_max))
+    ends = set(np.geomspace(1e-6, t_end, 9)) | {0.0}
+    if psd.q_l * (1 + 1e-6) < psd.q_r < psd.q_s:
+        ends.add(math.sqrt(math.log(psd.q_r / psd.q_l)))
+    ends = sorted(ends)
+    mu = sum(quad(integrand, a, b, limit=200, epsrel=1e-11)[0] for a, b in zip(ends[:-1], ends[1:]))
     A = erf(0.5 / math.sqrt(G(psd.q_s)))
     res = pf.rubber_friction(psd, z, sigma0, v)
     # the nested adaptive quadratures of this reference agree with their own refinements to ~1e-6 (the inner G is

@@ -32,8 +32,8 @@ from persson_fp._validate import as_float_array, as_positive_scalar
 from persson_fp._warn import warn_user
 from persson_fp.theory import fudge as _fudge
 from persson_fp.theory.sliding import (
-    AngularIntegrals,
     LnQRule,
+    angular_integrals,
     check_material,
     check_modulus_in_G,
     check_strain_softening,
@@ -184,27 +184,62 @@ class FrictionResult:
         return fig
 
 
+_ZT, _ZW = np.polynomial.legendre.leggauss(40)
+
+
+def _first_panel_factor(a: np.ndarray, S) -> np.ndarray:
+    r"""The mean of :math:`P\,S(P)` over the innermost panel :math:`[x_0, x_0 + \delta]`, where G is linear.
+
+    With :math:`G = g_0 s` (:math:`s = \ln q - \ln q_0 \le \delta`, :math:`a = g_0\delta`) and
+    :math:`P = \mathrm{erf}(1/(2\sqrt{G}))`: :math:`J(a) = \int_0^1 P S(P)\,d\sigma
+    = rac{1}{2a}\int_0^{2\sqrt a} \mathrm{erf}(1/z)\,S(\mathrm{erf}(1/z))\,z\,dz` (:math:`z = 2\sqrt{a\sigma}`),
+    Gauss–Legendre on :math:`z \le 8` and in :math:`\ln z` beyond: exact however steeply P falls near
+    :math:`q_0` (a Gauss rule in :math:`s` is not, where P falls within the panel like :math:`1/\sqrt{g_0 s}`).
+    """
+    a = np.asarray(a, dtype=float)
+    Z = 2.0 * np.sqrt(a)
+    zA = np.minimum(Z, 8.0)[:, None] * 0.5 * (_ZT + 1.0)
+    with np.errstate(divide="ignore"):
+        PA = erf(1.0 / zA)
+    part = (PA * S(PA) * zA) @ _ZW * (0.5 * np.minimum(Z, 8.0))
+    far = Z > 8.0
+    if np.any(far):
+        lo, hi = np.log(8.0), np.log(Z[far])
+        u = lo + (hi - lo)[:, None] * 0.5 * (_ZT + 1.0)
+        zB = np.exp(u)
+        PB = erf(1.0 / zB)
+        part[far] += (PB * S(PB) * zB * zB) @ _ZW * (0.5 * (hi - lo))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        J = part / (2.0 * a)
+    return np.where(a > 0, J, S(np.ones(1))[0])
+
+
 def _pass(psd, material, sigma0, v, aT, bT, q1, S, red_G, soft, refine):
     """One evaluation of mu, P(q1) and G, P at the nodes, for flattened speeds ``v`` with shifts ``aT``, ``bT``."""
     rule = LnQRule(psd, q1, refine=refine)
-    q = rule.q
+    q = np.concatenate([[psd.q_l], rule.q])  # q0 itself first: the slope of G and the integrand there
     q4C = q**4 * psd.C(q)
-    ang = AngularIntegrals(material, refine=refine)
-    P1, P2, Psi = ang((v * aT)[:, None] * q[None, :])
+    ang = angular_integrals(material, refine)
+    w0 = (v * aT)[:, None] * q[None, :]
     if soft is not None:
+        P1, P2, Psi = ang(w0)
         f, g = soft.factors(local_strain(psd, q))
         Phi, Psi = f * f * P1 + g * g * P2, g * Psi
     else:
-        Phi = P1 + P2
+        Phi, Psi = ang.phi_psi(w0)
     nu2 = 1.0 - material.nu**2
     gG = q4C * (bT * bT)[:, None] * Phi / (8.0 * sigma0 * sigma0 * (nu2 * nu2 if red_G else 1.0))
-    G, G1 = rule.cumulative(gG)
+    G, G1 = rule.cumulative(gG[:, 1:])
     G = np.maximum(G, 0.0)  # a running integral of a positive function: round-off never makes it negative
     with np.errstate(divide="ignore"):
         P = erf(0.5 / np.sqrt(G))
         A = erf(0.5 / np.sqrt(G1))
-    integrand = 0.5 * q4C * P * S(P) * Psi * bT[:, None] / (nu2 * sigma0)
-    return rule.integral(integrand), A, q, G, G1, P
+    F = 0.5 * q4C * Psi * bT[:, None] / (nu2 * sigma0)  # the friction integrand without P S(P)
+    integrand = F[:, 1:] * P * S(P)
+    m, delta = rule.m, rule.right[0] - rule.left[0]
+    inner = F[:, 0] * delta * _first_panel_factor(gG[:, 0] * delta, S)
+    mu = integrand[:, m:] @ rule.weights[m:] + inner
+    return mu, A, rule.q, G, G1, P
 
 
 def _coverage(material, q0, q1, omega_needed):

@@ -44,6 +44,7 @@ from persson_fp.theory.viscoelastic import StrainSoftening, ViscoelasticMaterial
 
 __all__ = [
     "AngularIntegrals",
+    "angular_integrals",
     "LnQRule",
     "SlidingViscoelastic",
     "MODULI_IN_G",
@@ -113,16 +114,20 @@ def phi_rule(refine: int = 1) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _lagrange4(u0: float, h: float, table: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """Four-point Lagrange interpolation of ``table`` (last axis: points u0 + i h) at ``u`` (clipped to the grid)."""
-    n = table.shape[-1]
-    r = (np.asarray(u, dtype=float) - u0) / h
+    """Four-point Lagrange interpolation of ``table`` (rows: points u0 + i h; columns: quantities) at ``u``.
+
+    Returns shape ``u.shape + (table.shape[1],)``; ``u`` is clipped to the grid."""
+    n = table.shape[0]
+    r = (np.asarray(u, dtype=float).ravel() - u0) / h
     i = np.clip(np.floor(r).astype(np.intp) - 1, 0, n - 4)
     t = np.clip(r - i, 0.0, n - 1.0 - i)  # offset from point i, in [0, 3] inside
-    c0 = -(t - 1.0) * (t - 2.0) * (t - 3.0) / 6.0
-    c1 = t * (t - 2.0) * (t - 3.0) / 2.0
-    c2 = -t * (t - 1.0) * (t - 3.0) / 2.0
-    c3 = t * (t - 1.0) * (t - 2.0) / 6.0
-    return c0 * table[..., i] + c1 * table[..., i + 1] + c2 * table[..., i + 2] + c3 * table[..., i + 3]
+    t1, t2, t3 = t - 1.0, t - 2.0, t - 3.0
+    c0 = (-t1 * t2 * t3 / 6.0)[:, None]
+    c1 = (t * t2 * t3 / 2.0)[:, None]
+    c2 = (-t * t1 * t3 / 2.0)[:, None]
+    c3 = (t * t1 * t2 / 6.0)[:, None]
+    out = c0 * table[i] + c1 * table[i + 1] + c2 * table[i + 2] + c3 * table[i + 3]
+    return out.reshape((*np.shape(u), table.shape[1]))
 
 
 class AngularIntegrals:
@@ -181,20 +186,48 @@ class AngularIntegrals:
         k0 = math.floor(u_lo / self.h)
         n = max(math.ceil(u_hi / self.h) - k0 + 1, 4)
         u = (k0 + np.arange(n)) * self.h
-        vals = self.direct(np.exp(u))
-        logs = np.all(vals > 0, axis=1)
-        store = np.where(logs[:, None], np.log(np.where(vals > 0, vals, 1.0)), vals)
+        P1, P2, Psi = self.direct(np.exp(u))
+        vals = np.stack([P1 + P2, Psi, P1, P2], axis=1)  # columns: Phi, Psi, Phi', Phi''
+        logs = np.all(vals > 0, axis=0)
+        store = np.ascontiguousarray(np.where(logs, np.log(np.where(vals > 0, vals, 1.0)), vals))
         self._table = (k0 * self.h, n, store, logs)
         return self._table
 
+    def _interpolate(self, omega0, columns: slice) -> np.ndarray:
+        w0 = np.asarray(omega0, dtype=float)
+        k = len(range(4)[columns])
+        if w0.size == 0:
+            return np.zeros((k, *w0.shape))
+        u0, _n, store, logs = self._ensure(float(w0.min()), float(w0.max()))
+        vals = _lagrange4(u0, self.h, store[:, columns], np.log(w0))
+        vals = np.where(logs[columns], np.exp(vals), vals)
+        return np.moveaxis(vals, -1, 0)
+
     def __call__(self, omega0) -> np.ndarray:
         """(Phi', Phi'', Psi) at ``omega0`` (rad/s, > 0), interpolated: shape (3, *omega0.shape)."""
-        w0 = np.asarray(omega0, dtype=float)
-        if w0.size == 0:
-            return np.zeros((3, *w0.shape))
-        u0, _n, store, logs = self._ensure(float(w0.min()), float(w0.max()))
-        vals = _lagrange4(u0, self.h, store, np.log(w0))
-        return np.where(logs.reshape((3,) + (1,) * w0.ndim), np.exp(vals), vals)
+        Phi, Psi, P1, P2 = self._interpolate(omega0, slice(0, 4))
+        return np.stack([P1, P2, Psi])
+
+    def phi_psi(self, omega0) -> np.ndarray:
+        """(Phi = Phi' + Phi'', Psi) at ``omega0`` (rad/s, > 0), interpolated: shape (2, *omega0.shape)."""
+        return self._interpolate(omega0, slice(0, 2))
+
+
+_ANGULAR_CACHE: dict = {}
+_ANGULAR_CACHE_SIZE = 16
+
+
+def angular_integrals(material: ViscoelasticMaterial, refine: int = 1) -> AngularIntegrals:
+    """The :class:`AngularIntegrals` of ``material`` at ``refine``, kept for later calls (the last 16 materials):
+    a material's tables are built once, on its first use."""
+    key = (material, refine)
+    hit = _ANGULAR_CACHE.pop(key, None)
+    if hit is None:
+        hit = AngularIntegrals(material, refine)
+        if len(_ANGULAR_CACHE) >= _ANGULAR_CACHE_SIZE:
+            _ANGULAR_CACHE.pop(next(iter(_ANGULAR_CACHE)))
+    _ANGULAR_CACHE[key] = hit  # most recent last
+    return hit
 
 
 # -- the wavenumber rule ------------------------------------------------------------------------------------------
@@ -234,8 +267,9 @@ class LnQRule:
     Panels end at the spectrum's kinks (:func:`breakpoints`) and are at most ``1/panels_per_decade`` decade wide,
     ``m`` nodes each; the first regular panel is split geometrically towards :math:`q_0` (:data:`GRADING_LEVELS`
     panels shrinking by :data:`GRADING_RATIO`), where the contact area can fall like
-    :math:`1/\sqrt{\ln(q/q_0)}`.  :meth:`cumulative` returns :math:`\int_{x_0}^{x_k} g\,dx` at every node :math:`x_k` (the
-    integration matrix of the panel's interpolating polynomial, exact for degree :math:`m-1`) and the total.
+    :math:`1/\sqrt{\ln(q/q_0)}`.  :meth:`cumulative` returns :math:`\int_{x_0}^{x_k} g\,dx` at every node
+    :math:`x_k` (the integration matrix of the panel's interpolating polynomial, exact for degree :math:`m-1`) and
+    the total.
 
     Parameters
     ----------
@@ -257,15 +291,16 @@ class LnQRule:
         for a, b in zip(edges[:-1], edges[1:]):
             k = max(1, math.ceil((b - a) / hmax - 1e-9))
             panels.append(a + (b - a) * np.arange(k + 1)[:-1] / k)
-        first = panels[0][1] - x0 if panels[0].size > 1 else edges[1] - x0
-        # geometric grading towards q0: G(q) grows from 0 there, so P = erf(1/(2 sqrt G)) behaves like
-        # 1/sqrt(ln q - ln q0) where G grows fast; panels shrinking by GRADING resolve it (hp refinement)
-        # refined: twice the levels at the square root of the ratio (the same smallest panel, ~1e-9 of ln q0's scale)
+        # geometric grading towards q0, whatever kinks lie there: G(q) grows from 0 at q0, so P = erf(1/(2 sqrt G))
+        # behaves like 1/sqrt(ln q - ln q0) where G grows fast; panels shrinking by GRADING_RATIO resolve it (hp
+        # refinement).  Refined: twice the levels at the square root of the ratio (the same smallest panel).
+        first = min(hmax * refine, x1 - x0)  # the regular width of the unrefined rule
         levels = GRADING_LEVELS * refine
         graded = x0 + first * (GRADING_RATIO ** (1.0 / refine)) ** np.arange(levels, 0, -1)
-        graded = graded[graded - x0 > 1e-10 * max(1.0, abs(x0))]  # never below what floating point resolves
-        panels[0] = np.concatenate([[x0], graded, panels[0][1:]])
-        left = np.concatenate(panels)
+        left = np.unique(np.concatenate(panels + [graded[graded < x1]]))
+        tiny = 1e-10 * max(1.0, abs(x0), abs(x1))  # never a panel below what floating point resolves
+        left = left[np.concatenate([[True], np.diff(left) > tiny])]
+        left = left[x1 - left > tiny]
         right = np.append(left[1:], x1)
         t, w = _gauss(m)
         half = 0.5 * (right - left)
@@ -364,7 +399,7 @@ class SlidingViscoelastic(ElasticResponse):
         self.strain_softening = check_strain_softening(strain_softening)
         self.aT = float(10.0 ** material.log10_aT(temperature)) if material.needs_temperature else 1.0
         self.bT = float(material.b_T(temperature)) if material.needs_temperature else 1.0
-        self._angular = AngularIntegrals(material)
+        self._angular = angular_integrals(material)
         self._cache = None
 
     def __repr__(self):
@@ -400,12 +435,12 @@ class SlidingViscoelastic(ElasticResponse):
     def integrand(self, psd, q) -> np.ndarray:
         """dV/d(ln q) at wavenumbers ``q`` (in [q_l, q_s]), pressure^2."""
         q = np.asarray(q, dtype=float)
-        P1, P2, _ = self._angular(q * (self.velocity * self.aT))
         if self.strain_softening is not None:
+            P1, P2, _ = self._angular(q * (self.velocity * self.aT))
             f, g = self.strain_softening.factors(local_strain(psd, q))
             Phi = f * f * P1 + g * g * P2
         else:
-            Phi = P1 + P2
+            Phi = self._angular.phi_psi(q * (self.velocity * self.aT))[0]
         return 0.25 * q**4 * psd.C(q) * (self.bT**2) * Phi / self._denominator()
 
     def _setup(self, psd):
