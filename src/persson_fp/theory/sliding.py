@@ -281,9 +281,11 @@ class LnQRule:
         1 or 2 (doubled panels).
     panels_per_decade, m : int
         Panel density (default 5 per decade) and Gauss nodes per panel (default 6).
+    graded : bool
+        Grade the panels towards q0 (default True; the variance V, whose integrand is smooth there, does without).
     """
 
-    def __init__(self, psd, q1: float, refine: int = 1, panels_per_decade: int = 5, m: int = 6):
+    def __init__(self, psd, q1: float, refine: int = 1, panels_per_decade: int = 5, m: int = 6, graded: bool = True):
         x0, x1 = math.log(psd.q_l), math.log(q1)
         edges = np.concatenate([[x0], np.log(breakpoints(psd, q1)), [x1]])
         hmax = math.log(10.0) / (panels_per_decade * refine)
@@ -295,9 +297,9 @@ class LnQRule:
         # behaves like 1/sqrt(ln q - ln q0) where G grows fast; panels shrinking by GRADING_RATIO resolve it (hp
         # refinement).  Refined: twice the levels at the square root of the ratio (the same smallest panel).
         first = min(hmax * refine, x1 - x0)  # the regular width of the unrefined rule
-        levels = GRADING_LEVELS * refine
-        graded = x0 + first * (GRADING_RATIO ** (1.0 / refine)) ** np.arange(levels, 0, -1)
-        left = np.unique(np.concatenate(panels + [graded[graded < x1]]))
+        levels = GRADING_LEVELS * refine if graded else 0
+        grading = x0 + first * (GRADING_RATIO ** (1.0 / refine)) ** np.arange(levels, 0, -1)
+        left = np.unique(np.concatenate(panels + [grading[grading < x1]]))
         tiny = 1e-10 * max(1.0, abs(x0), abs(x1))  # never a panel below what floating point resolves
         left = left[np.concatenate([[True], np.diff(left) > tiny])]
         left = left[x1 - left > tiny]
@@ -447,7 +449,7 @@ class SlidingViscoelastic(ElasticResponse):
         c = self._cache
         if c is not None and c[0] is psd:
             return c[1]
-        rule = LnQRule(psd, psd.q_s)
+        rule = LnQRule(psd, psd.q_s, graded=False)
         g = self.integrand(psd, rule.q)
         n_p = rule.left.size
         totals = g.reshape(n_p, rule.m) @ rule._w * rule.half
