@@ -359,7 +359,10 @@ def rubber_friction(
     else:
         q1 = as_positive_scalar(q1, "q1")
         if not psd.q_l < q1 <= psd.q_s * (1 + 1e-12):
-            raise ValueError(f"q1 must lie in (q_l, q_s] = ({psd.q_l!r}, {psd.q_s!r}] (1/length), got {q1!r}")
+            raise ValueError(
+                f"q1 must lie in the spectrum's band: above its lower cut-off {psd.q_l!r} and at most its upper "
+                f"cut-off {psd.q_s!r} (1/length); got {q1!r}"
+            )
         q1 = min(q1, float(psd.q_s))
     S = _fudge.resolve(fudge)
     modulus_in_G = check_modulus_in_G(modulus_in_G)

@@ -1,5 +1,5 @@
 """The ``persson-fp`` command: the parser and the dispatch to one module per subcommand (``report``, ``solve``,
-``area``, ``surface``, ``sweep``, ``calibrate``; what they share is in ``_problem.py`` and ``_io.py``).
+``area``, ``surface``, ``sweep``, ``calibrate``, ``friction``; what they share is in ``_problem.py`` and ``_io.py``).
 
 It only wires the package together.  Every error -- a bad argument, an unreadable or unwritable
 file, a solver that refuses a problem or breaks an invariant -- prints one line on stderr and exits
@@ -16,6 +16,7 @@ import sys
 from persson_fp._version import __version__
 from persson_fp.cli import area, report, solve
 from persson_fp.cli import calibrate as cli_calibrate
+from persson_fp.cli import friction as cli_friction
 from persson_fp.cli import surface as cli_surface
 from persson_fp.cli import sweep as cli_sweep
 from persson_fp.cli._io import CLIError
@@ -40,6 +41,8 @@ commands:
   sweep    a folder of surfaces (CSV spectra) x fudge models x loads into one table (CSV or Parquet)
   calibrate  fit a fudge model's gamma to your A*(p_bar) / mean-separation data, with uncertainty;
            several models ranked by held-out error
+  friction rubber friction mu(v, T) and sliding contact area from a DMA master curve (or a Zener model),
+           a time-temperature shift and the road's spectrum: the isothermal viscoelastic part only (CSV + PNG)
 
 examples:
   persson-fp
@@ -49,6 +52,7 @@ examples:
   persson-fp area --n-loads 200 --output area/
   persson-fp surface heights.npy --size 1e-3 --E-star 2.1e11 --output surf/
   persson-fp calibrate data.csv --psd psd.csv --model YP08 WM17 Xu24
+  persson-fp friction --master-curve mc.csv --wlf 8.86 101.6 --T-ref 20 --psd road.csv --p-bar 2e5
 
 Equation labels such as eq:Area_Persson or E:PSD are those of Y. Xu, X. Li, Q. Chen, Y. Zhou, "Persson's
 Theory of Purely Normal Elastic Rough Surface Contact: A Tutorial Based on Stochastic Process Theory".
@@ -57,7 +61,15 @@ Fudge factors: Yang & Persson 2008 (YP08), Wang & Muser 2017 (WM17), Xu et al. 2
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with its errors on one line (no usage block): "persson-fp solve: error: ... (see --help)"."""
+    """argparse with its errors on one line (no usage block): "persson-fp solve: error: ... (see --help)".
+
+    A negative number in any notation (``-2e5``, ``-1e-3``) is a value, not an option, so that a bad value such as
+    ``--p-bar -2e5`` reaches the check that names what is wrong with it (argparse alone knows only ``-2``, ``-0.5``).
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.I)
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {' '.join(message.split())} (see {self.prog} --help)\n")
@@ -66,9 +78,9 @@ class _Parser(argparse.ArgumentParser):
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="persson-fp", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"persson-fp {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="{report,solve,area,surface,sweep,calibrate}")
+    sub = parser.add_subparsers(dest="command", metavar="{report,solve,area,surface,sweep,calibrate,friction}")
 
-    for command in (report, solve, area, cli_surface, cli_sweep, cli_calibrate):
+    for command in (report, solve, area, cli_surface, cli_sweep, cli_calibrate, cli_friction):
         command.add_parser(sub)
     return parser
 
