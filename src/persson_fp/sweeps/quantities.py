@@ -234,3 +234,51 @@ register_quantity(
     "pressure",
     "DMT pull-off stress, exponential law w = 0.1 U_el(full contact), rho = h_rms (same for every load)",
 )
+
+
+# -- rubber friction (persson_fp.analysis.friction) ---------------------------------------------------------------
+def _friction_of(problem, what: str) -> np.ndarray:
+    """``what`` of :func:`persson_fp.rubber_friction` at each load of a sliding problem (the model's fudge factor
+    as the weight S(P) of the friction integrand)."""
+    from persson_fp.analysis.friction import rubber_friction
+    from persson_fp.theory.sliding import SlidingViscoelastic
+
+    resp = problem.response
+    if not isinstance(resp, SlidingViscoelastic):
+        raise ValueError(
+            f"{what} needs a sliding model: a model dict with material= and velocity= (and temperature= for a "
+            "material with a shift law)"
+        )
+    out = [
+        getattr(
+            rubber_friction(problem.psd, resp.material, float(p), resp.velocity, resp.temperature,
+                            fudge=problem.fudge, modulus_in_G=resp.modulus_in_G,
+                            strain_softening=resp.strain_softening),
+            what,
+        )
+        for p in np.atleast_1d(problem.p_bar)
+    ]  # fmt: skip
+    return np.array(out, dtype=float)
+
+
+def _friction(problem, solution):
+    return _friction_of(problem, "mu")
+
+
+def _sliding_area(problem, solution):
+    return _friction_of(problem, "contact_area")
+
+
+register_quantity(
+    "friction",
+    _friction,
+    "1",
+    "viscoelastic friction coefficient mu of a sliding model (Persson, J. Chem. Phys. 115 (2001) 3840; isothermal, "
+    "hysteretic part only)",
+)
+register_quantity(
+    "sliding_area",
+    _sliding_area,
+    "1",
+    "sliding contact area A/A0 = P(q1) of a sliding model (Persson 2001; independent of the fudge factor)",
+)

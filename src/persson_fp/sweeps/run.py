@@ -125,9 +125,17 @@ def _resolve_surfaces(surfaces, reader, pattern):
     return out
 
 
+SLIDING_KEYWORDS = frozenset({"material", "velocity", "temperature", "modulus_in_G", "strain_softening"})
+"""Keywords that make a model a sliding rubber (:func:`persson_fp.sliding_contact`; ``material`` and ``velocity``
+required): its problem is the sliding contact problem (``E_star`` is not used), and the quantities ``friction`` and
+``sliding_area`` evaluate :func:`persson_fp.rubber_friction` at its loads."""
+
+
 def _problem_keywords() -> set:
-    """ContactProblem's keyword arguments a model may set (all but psd, p_bar and E_star)."""
-    return set(inspect.signature(ContactProblem.__init__).parameters) - {"self", "psd", "p_bar", "E_star"}
+    """ContactProblem's keyword arguments a model may set (all but psd, p_bar and E_star), and a sliding rubber's."""
+    return (set(inspect.signature(ContactProblem.__init__).parameters) - {"self", "psd", "p_bar", "E_star"}) | set(
+        SLIDING_KEYWORDS
+    )
 
 
 def _value_label(v) -> str:
@@ -146,6 +154,12 @@ def _resolve_model(spec):
         if bad:
             raise ValueError(f"models: unknown ContactProblem keyword(s) {bad}; a model may set {sorted(allowed)}")
         kwargs = dict(spec)
+        sliding = set(spec) & SLIDING_KEYWORDS
+        if sliding and not {"material", "velocity"} <= set(spec):
+            raise ValueError(f"models: a sliding model needs material= and velocity= (got {sorted(sliding)})")
+        if sliding and not set(spec) <= SLIDING_KEYWORDS | {"fudge"}:
+            bad = sorted(set(spec) - SLIDING_KEYWORDS - {"fudge"})
+            raise ValueError(f"models: {bad} cannot be combined with a sliding model's keywords")
     else:
         kwargs = {"fudge": spec}
     kwargs["fudge"] = _fudge.resolve(kwargs.get("fudge"))  # checks a name or a callable here, once
@@ -212,7 +226,12 @@ def _run_task(task: _Task) -> _TaskResult:
     res = _TaskResult(task.surface, task.model)
     t0 = time.perf_counter()
     try:
-        problem = ContactProblem(task.psd, task.E_star, task.p_bar, **task.kwargs)
+        if "material" in task.kwargs:
+            from persson_fp.problems.sliding import sliding_contact
+
+            problem = sliding_contact(task.psd, sigma0=task.p_bar, **task.kwargs)
+        else:
+            problem = ContactProblem(task.psd, task.E_star, task.p_bar, **task.kwargs)
         if task.method == "exact":
             solution = exact(problem)
         else:
@@ -323,7 +342,9 @@ def sweep(
         A model is ``None`` (Persson 2001), a fudge-factor name ("YP08", "WM17", "Xu24"), a
         :class:`~persson_fp.theory.fudge.FudgeFactor`, a callable S(A*) (``eq:new_B2``), or a dict of
         :class:`~persson_fp.ContactProblem` keyword arguments such as ``{"fudge": "YP08"}`` (any
-        keyword but psd, p_bar and E_star; new ones of ContactProblem are accepted as they appear).
+        keyword but psd, p_bar and E_star; new ones of ContactProblem are accepted as they appear), or a sliding
+        rubber ``{"material": ..., "velocity": ..., "temperature": ..., "fudge": ...}`` (:data:`SLIDING_KEYWORDS`,
+        :func:`persson_fp.sliding_contact`; with the quantities ``friction`` and ``sliding_area``).
         ``models`` itself as a dict is one model when all its keys are such keywords, else labels.
     quantities : str or sequence of str
         Names from ``persson_fp.QUANTITIES`` ("contact_area", "variance",
