@@ -43,3 +43,26 @@ def test_walls_and_responses_page(capsys):
     assert ns["A"] == pytest.approx(A, rel=1e-10)
     assert float(pf.exact(pr).contact_area) == pytest.approx(A, rel=1e-10)
     assert float(pf.solve(pr, "chebyshev").contact_area[-1]) == pytest.approx(A, abs=1e-7)
+
+
+def test_rubber_friction_page(capsys):
+    ns = run_page("rubber_friction.md")
+    out = capsys.readouterr().out
+    assert "mu peaks at" in out and "(3, 50)" in out
+    # the page's Zener example against the quadrature written from the closed-form angular integrals
+    from tests.friction.test_rubber_friction import reference_mu
+
+    res, road = ns["res"], ns["road"]
+    i = int(ns["i"])
+    mu, A = reference_mu(road, 3e6, 3e9, 1e-4, 0.5, 0.2e6, float(res.velocity[i]), road.q_s)
+    assert float(res.mu[i]) == pytest.approx(mu, rel=1e-6)
+    assert float(res.contact_area[i]) == pytest.approx(A, rel=1e-6)
+    # the conventions table is what the command it names computes
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("fc", DOCS.parent / "benchmarks" / "friction_conventions.py")
+    fc = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(fc)
+    text = (DOCS / "rubber_friction.md").read_text(encoding="utf8")
+    for label, mu_row, A_row in fc.rows():
+        assert f"| {mu_row:.4g} | {A_row:.4g} |" in text, label

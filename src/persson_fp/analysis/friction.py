@@ -274,7 +274,7 @@ def rubber_friction(
 
     Persson's theory (Persson, J. Chem. Phys. 115 (2001) 3840, Eqs. for :math:`\mu`, :math:`P(q)` and
     :math:`G(q)`; J. Phys.: Condens. Matter 18 (2006) 7789; the module docstring writes them out).  **Scope**:
-    the isothermal hysteretic part only (:data:`SCOPE`).
+    the isothermal hysteretic part only (``SCOPE``).
 
     Conventions (each in the result's ``conventions`` and ``repr``):
 
@@ -288,7 +288,7 @@ def rubber_friction(
     * :math:`q_0` is the spectrum's :math:`q_l`; ``q1`` (default the spectrum's :math:`q_s`) is the short-wavelength
       cut-off; :math:`\mu` depends on it.  The spectrum's own convention is used as given (its ``C(q)``).
     * Frequencies: :math:`\omega = q v \cos\phi` rad/s, shifted as :math:`E(\omega, T) = b_T E_{ref}(\omega a_T)`
-      (:mod:`persson_fp.viscoelastic`).
+      (:mod:`persson_fp.theory.viscoelastic`).
 
     Accuracy: the angular integrals use Gauss–Legendre in :math:`\phi` near :math:`\phi = 0` and in
     :math:`-\ln\cos\phi` near :math:`\pi/2` (resolving the sharp feature there at high speed), tabulated at 32
@@ -304,8 +304,8 @@ def rubber_friction(
     psd : PSD
         The rough surface's spectrum (the road), lengths in the unit of ``velocity``.
     material : ViscoelasticMaterial
-        The rubber: :class:`~persson_fp.viscoelastic.Zener`, :class:`~persson_fp.viscoelastic.Prony` or
-        :class:`~persson_fp.viscoelastic.MasterCurve`.
+        The rubber: :class:`~persson_fp.theory.viscoelastic.Zener`, :class:`~persson_fp.theory.viscoelastic.Prony` or
+        :class:`~persson_fp.theory.viscoelastic.MasterCurve`.
     sigma0 : float, pressure
         Nominal contact pressure (the unit of the material's moduli), finite and > 0.
     velocity : float or array_like, length/s

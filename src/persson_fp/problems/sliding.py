@@ -48,7 +48,7 @@ def sliding_contact(
     psd : PSD
         The rough surface's spectrum (the rigid counter-surface, e.g. a road).
     material : ViscoelasticMaterial
-        The rubber (:mod:`persson_fp.viscoelastic`).
+        The rubber (:mod:`persson_fp.theory.viscoelastic`).
     sigma0 : float or array_like, pressure
         Nominal contact pressure(s) (the loads ``p_bar``), finite and > 0.
     velocity : float, length/s

@@ -343,7 +343,7 @@ def sweep(
         :class:`~persson_fp.theory.fudge.FudgeFactor`, a callable S(A*) (``eq:new_B2``), or a dict of
         :class:`~persson_fp.ContactProblem` keyword arguments such as ``{"fudge": "YP08"}`` (any
         keyword but psd, p_bar and E_star; new ones of ContactProblem are accepted as they appear), or a sliding
-        rubber ``{"material": ..., "velocity": ..., "temperature": ..., "fudge": ...}`` (:data:`SLIDING_KEYWORDS`,
+        rubber ``{"material": ..., "velocity": ..., "temperature": ..., "fudge": ...}`` (``SLIDING_KEYWORDS``,
         :func:`persson_fp.sliding_contact`; with the quantities ``friction`` and ``sliding_area``).
         ``models`` itself as a dict is one model when all its keys are such keywords, else labels.
     quantities : str or sequence of str

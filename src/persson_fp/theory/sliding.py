@@ -137,7 +137,7 @@ class AngularIntegrals:
     :math:`\Phi''(\omega_0) = 4\int_0^{\pi/2} E''(\omega_0\cos\phi)^2 d\phi` (so :math:`\Phi = \Phi' + \Phi''`;
     strain softening weights them by :math:`f^2` and :math:`g^2`) and
     :math:`\Psi(\omega_0) = 4\int_0^{\pi/2}\cos\phi\,E''(\omega_0\cos\phi)\,d\phi`, each with the rule of
-    :func:`phi_rule`.
+    ``phi_rule``.
 
     Parameters
     ----------
@@ -163,7 +163,7 @@ class AngularIntegrals:
         return f(omega) if f is not None else m.modulus_ref(omega)
 
     def direct(self, omega0) -> np.ndarray:
-        """(Phi', Phi'', Psi) at ``omega0`` (rad/s, > 0) by the rule itself: shape (3, *omega0.shape), pressure^2,
+        """(Phi', Phi'', Psi) at ``omega0`` (rad/s, > 0) by the rule itself: shape ``(3, *omega0.shape)``, pressure^2,
         pressure^2, pressure."""
         w0 = np.asarray(omega0, dtype=float).ravel()
         out = np.empty((3, w0.size))
@@ -204,12 +204,12 @@ class AngularIntegrals:
         return np.moveaxis(vals, -1, 0)
 
     def __call__(self, omega0) -> np.ndarray:
-        """(Phi', Phi'', Psi) at ``omega0`` (rad/s, > 0), interpolated: shape (3, *omega0.shape)."""
+        """(Phi', Phi'', Psi) at ``omega0`` (rad/s, > 0), interpolated: shape ``(3, *omega0.shape)``."""
         Phi, Psi, P1, P2 = self._interpolate(omega0, slice(0, 4))
         return np.stack([P1, P2, Psi])
 
     def phi_psi(self, omega0) -> np.ndarray:
-        """(Phi = Phi' + Phi'', Psi) at ``omega0`` (rad/s, > 0), interpolated: shape (2, *omega0.shape)."""
+        """(Phi = Phi' + Phi'', Psi) at ``omega0`` (rad/s, > 0), interpolated: shape ``(2, *omega0.shape)``."""
         return self._interpolate(omega0, slice(0, 2))
 
 
@@ -265,8 +265,8 @@ class LnQRule:
     r"""Gauss–Legendre panels in :math:`x = \ln q` over :math:`[q_0, q_1]`, with the running integral at every node.
 
     Panels end at the spectrum's kinks (:func:`breakpoints`) and are at most ``1/panels_per_decade`` decade wide,
-    ``m`` nodes each; the first regular panel is split geometrically towards :math:`q_0` (:data:`GRADING_LEVELS`
-    panels shrinking by :data:`GRADING_RATIO`), where the contact area can fall like
+    ``m`` nodes each; the first regular panel is split geometrically towards :math:`q_0` (``GRADING_LEVELS``
+    panels shrinking by ``GRADING_RATIO``), where the contact area can fall like
     :math:`1/\sqrt{\ln(q/q_0)}`.  :meth:`cumulative` returns :math:`\int_{x_0}^{x_k} g\,dx` at every node
     :math:`x_k` (the integration matrix of the panel's interpolating polynomial, exact for degree :math:`m-1`) and
     the total.
@@ -375,7 +375,7 @@ class SlidingViscoelastic(ElasticResponse):
     Parameters
     ----------
     material : ViscoelasticMaterial
-        The rubber (:mod:`persson_fp.viscoelastic`).
+        The rubber (:mod:`persson_fp.theory.viscoelastic`).
     velocity : float, length/s
         Sliding speed in the spectrum's length unit per second (m/s for a spectrum in metres), finite and > 0.
     temperature : float, optional, degrees C

@@ -526,7 +526,7 @@ class MasterCurve(ViscoelasticMaterial):
     :math:`\ln\omega`: the moduli stay positive, and a smooth curve tabulated at 10 points per decade is reproduced
     to ~3e-5 between its points (5 per decade: ~5e-4).  Outside the table (``extrapolation``):
     "clamp" holds the end values (default), "loglinear" extends the end segments' log–log slopes, "raise" refuses
-    a frequency outside the table in :meth:`modulus` (the friction integrals still clamp where
+    a frequency outside the table in :meth:`~ViscoelasticMaterial.modulus` (the friction integrals still clamp where
     :math:`\cos\phi \to 0` takes the frequency to 0: that part always leaves a table).
 
     Parameters
