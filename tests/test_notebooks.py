@@ -70,7 +70,7 @@ def test_script_pairs_with_notebook(script):
     )
 
 
-_HEAVY = {"05_where_methods_fail.ipynb", "13_calibration.ipynb"}  # (the heavy group: 14-26 s each)
+_HEAVY = {"05_where_methods_fail.ipynb", "13_calibration.ipynb", "14_rubber_friction.ipynb"}  # (14-26 s each)
 
 
 @pytest.mark.parametrize(
