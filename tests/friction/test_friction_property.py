@@ -365,3 +365,23 @@ def test_friction_result_property(v, T):
     tab = res.table
     np.testing.assert_array_equal(np.asarray(tab["temperature [degC]"]), np.broadcast_to(Tc, res.mu.shape).ravel())
     np.testing.assert_array_equal(np.asarray(tab["mu [-]"]), res.mu.ravel())
+
+
+@FAST
+@given(z=zeners(), p=pronys(), T=st.floats(-50.0, 150.0))
+def test_material_base_and_constants_property(z, p, T):
+    """Every material is a ViscoelasticMaterial whose modulus at T is b_T E_ref(omega a_T); every shift law a
+    ShiftLaw; the module's constants are the physical ones (R exact in SI since 2019, 0 degC = 273.15 K)."""
+    law = pf.viscoelastic.WLF(8.86, 101.6)
+    for m in (z, p):
+        assert isinstance(m, pf.viscoelastic.ViscoelasticMaterial) and not m.needs_temperature
+    shifted = pf.viscoelastic.Zener(z.E_rubbery, z.E_glassy, z.tau, nu=z.nu, T_ref=20.0, shift=law, vertical="kelvin")
+    assert isinstance(law, pf.viscoelastic.ShiftLaw)
+    w = np.logspace(-3, 9, 7)
+    aT = 10.0 ** (-8.86 * (T - 20.0) / (101.6 + T - 20.0))
+    bT = (T + pf.viscoelastic.KELVIN) / (20.0 + pf.viscoelastic.KELVIN)
+    np.testing.assert_allclose(shifted.modulus(w, T), bT * z.modulus(w * aT), rtol=1e-12)
+    np.testing.assert_allclose(shifted.storage_modulus(w, T), bT * z.modulus(w * aT).real, rtol=1e-12)
+    np.testing.assert_allclose(shifted.loss_modulus(w, T), bT * z.modulus(w * aT).imag, rtol=1e-12, atol=1e-300)
+    assert pf.viscoelastic.R_GAS == 8.314462618 and pf.viscoelastic.KELVIN == 273.15
+    assert 0 < pf.viscoelastic.KK_TOLERANCE < 0.2
