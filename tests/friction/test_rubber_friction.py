@@ -254,6 +254,7 @@ def test_table_and_plot(road, zener):
         (dict(velocity="fast"), "velocity"),
         (dict(q1=1e9), "q1"),
         (dict(q1=1e3), "q1"),
+        (dict(q1=1e3 * (1 + 1e-13)), "q1"),
         (dict(fudge="nope"), "fudge"),
         (dict(modulus_in_G="reduce"), "modulus_in_G"),
         (dict(strain_softening=0.5), "strain_softening"),

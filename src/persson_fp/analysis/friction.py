@@ -358,7 +358,7 @@ def rubber_friction(
         q1 = float(psd.q_s)
     else:
         q1 = as_positive_scalar(q1, "q1")
-        if not psd.q_l < q1 <= psd.q_s * (1 + 1e-12):
+        if not psd.q_l * (1 + 1e-9) < q1 <= psd.q_s * (1 + 1e-12):  # (a band narrower than 1e-9 has no panel)
             raise ValueError(
                 f"q1 must lie in the spectrum's band: above its lower cut-off {psd.q_l!r} and at most its upper "
                 f"cut-off {psd.q_s!r} (1/length); got {q1!r}"
