@@ -69,25 +69,10 @@ def add_parser(sub):
 
 
 def _read_columns(path, option, names):
-    """Columns ``names`` of a CSV with a header row (units in brackets after a name are allowed)."""
-    from persson_fp._validate import as_file_path
+    """Columns ``names`` of a CSV with a header row; a bad file is a one-line error naming ``option``."""
+    from persson_fp._csv import read_columns
 
-    try:
-        path = as_file_path(path, option)
-    except ValueError as e:
-        raise CLIError(f"{option}: {e}") from None
-    with open(path, encoding="utf-8") as fh:
-        header = [h.strip().split("[")[0].strip() for h in fh.readline().split(",")]
-    missing = [n for n in names if n not in header]
-    if missing:
-        raise CLIError(f"{option}: {path} must have a header naming {', '.join(names)}; missing {', '.join(missing)}")
-    try:
-        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    except ValueError as e:
-        raise CLIError(f"{option}: {path}: not a numeric CSV table ({e})") from None
-    if data.shape[1] != len(header):
-        raise CLIError(f"{option}: {path}: {data.shape[1]} columns in the rows, {len(header)} in the header")
-    return [data[:, header.index(n)] for n in names]
+    return read_columns(path, names, option)
 
 
 def _material(args):

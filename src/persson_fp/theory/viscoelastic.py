@@ -89,6 +89,15 @@ class ShiftLaw:
     def check_reference(self, T_ref: float) -> None:
         """Called once by the material with its reference temperature (nothing by default)."""
 
+    def _key(self):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def __eq__(self, other):
+        return isinstance(other, ShiftLaw) and self._key() == other._key()
+
+    def __hash__(self):
+        return hash(self._key())
+
 
 class WLF(ShiftLaw):
     r"""Williams–Landel–Ferry shift: :math:`\log_{10} a_T = -C_1 (T - T_{ref})/(C_2 + T - T_{ref})`.
@@ -117,12 +126,6 @@ class WLF(ShiftLaw):
 
     def _key(self):
         return ("WLF", self.C1, self.C2)
-
-    def __eq__(self, other):
-        return isinstance(other, ShiftLaw) and self._key() == other._key()
-
-    def __hash__(self):
-        return hash(self._key())
 
     def log10_aT(self, T, T_ref: float) -> np.ndarray:
         """log10 a_T(T), degrees C; a ``ValueError`` naming ``temperature`` at T <= T_ref - C2."""
@@ -155,12 +158,6 @@ class Arrhenius(ShiftLaw):
 
     def _key(self):
         return ("Arrhenius", self.E_a)
-
-    def __eq__(self, other):
-        return isinstance(other, ShiftLaw) and self._key() == other._key()
-
-    def __hash__(self):
-        return hash(self._key())
 
     def log10_aT(self, T, T_ref: float) -> np.ndarray:
         """log10 a_T(T), degrees C."""
@@ -200,12 +197,6 @@ class ShiftTable(ShiftLaw):
 
     def _key(self):
         return ("ShiftTable", self.T.tobytes(), self.a_T.tobytes())
-
-    def __eq__(self, other):
-        return isinstance(other, ShiftLaw) and self._key() == other._key()
-
-    def __hash__(self):
-        return hash(self._key())
 
     def _interp(self, T: np.ndarray) -> np.ndarray:
         x, y = self.T, self._log
@@ -624,23 +615,10 @@ class MasterCurve(ViscoelasticMaterial):
         **kwargs
             Passed to :class:`MasterCurve` (``frequency_unit``, ``T_ref``, ``shift``, ``nu``, ...).
         """
-        from persson_fp._validate import as_file_path
+        from persson_fp._csv import read_columns
 
-        path = as_file_path(path, "path")
-        with open(path, encoding="utf-8") as fh:
-            header = fh.readline()
-        names = [h.strip().split(" ")[0].split("[")[0].strip() for h in header.split(",")]
-        missing = [c for c in ("frequency", "E_storage", "E_loss") if c not in names]
-        if missing:
-            raise ValueError(f"{path!r}: the header must name frequency, E_storage, E_loss; missing {missing}")
-        try:
-            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-        except ValueError as exc:
-            raise ValueError(f"{path!r}: not a numeric CSV table ({exc})") from None
-        if data.shape[0] < 3 or data.shape[1] != len(names):
-            raise ValueError(f"{path!r}: expected >= 3 rows of {len(names)} numbers, got shape {data.shape}")
-        col = {n: data[:, i] for i, n in enumerate(names)}
-        return cls(col["frequency"], col["E_storage"], col["E_loss"], **kwargs)
+        f, E1, E2 = read_columns(path, ("frequency", "E_storage", "E_loss"), "path")
+        return cls(f, E1, E2, **kwargs)
 
     def __repr__(self):
         return (
