@@ -385,3 +385,38 @@ def test_material_base_and_constants_property(z, p, T):
     np.testing.assert_allclose(shifted.loss_modulus(w, T), bT * z.modulus(w * aT).imag, rtol=1e-12, atol=1e-300)
     assert pf.viscoelastic.R_GAS == 8.314462618 and pf.viscoelastic.KELVIN == 273.15
     assert 0 < pf.viscoelastic.KK_TOLERANCE < 0.2
+
+
+GARBAGE = st.sampled_from([float("nan"), 1.0, -1.0, True, "road", None, [1.0, 2.0], np.array([]), 1 + 2j, object()])
+
+
+@FAST
+@given(bad=GARBAGE, which=st.sampled_from(["rubber_friction", "sliding_contact"]))
+def test_not_a_spectrum_is_refused_property(bad, which):
+    """Anything but a spectrum as ``psd`` is one ValueError naming psd (it was an AttributeError)."""
+    mat = pf.viscoelastic.Zener(3e6, 3e9, 1e-4)
+    fn = pf.rubber_friction if which == "rubber_friction" else pf.sliding_contact
+    with pytest.raises(ValueError, match="psd"):
+        fn(bad, mat, 2e5, 0.01)
+
+
+@FAST
+@given(bad=GARBAGE, which=st.sampled_from(["omega", "E_storage", "E_loss"]))
+def test_kramers_kronig_misfit_invalid_property(bad, which):
+    """A table that is not three positive increasing columns of one length is refused naming the column (it was an
+    IndexError or a TypeError)."""
+    cols = dict(omega=[1.0, 10.0, 100.0], E_storage=[1e6, 2e6, 3e6], E_loss=[1e5, 2e5, 3e5])
+    cols[which] = bad
+    with pytest.raises(ValueError, match=which):
+        pf.viscoelastic.kramers_kronig_misfit(**cols)
+
+
+def test_extreme_scales_are_refused_not_infinite():
+    """A subnormal sigma0 and a speed that overflows q v are refused by name (they gave NaN and an OverflowError)."""
+    psd = pf.SelfAffinePSD.from_rms_slope(1.0, 0.8, 1e3, 1e4, 1e7)
+    mat = pf.viscoelastic.Zener(3e6, 3e9, 1e-4)
+    with pytest.raises(ValueError, match="sigma0"):
+        pf.rubber_friction(psd, mat, 1e-320, 0.01)
+    with pytest.raises(ValueError, match="velocity"):
+        pf.sliding_contact(psd, mat, 2e5, 1e308)
+    assert np.isfinite(pf.viscoelastic.WLF(8.86, 101.6).log10_aT(1e308, 20.0))

@@ -36,6 +36,7 @@ from persson_fp.theory.sliding import (
     angular_integrals,
     check_material,
     check_modulus_in_G,
+    check_spectrum,
     check_strain_softening,
     local_strain,
 )
@@ -334,6 +335,7 @@ def rubber_friction(
         A parameter out of range (named); a temperature below the WLF law's pole; a master curve that does not
         cover the frequencies needed with ``extrapolation="raise"`` (otherwise a warning names both ranges).
     """
+    check_spectrum(psd)
     material = check_material(material)
     sigma0 = as_positive_scalar(sigma0, "sigma0")
     v = as_float_array(velocity, "velocity")
@@ -379,9 +381,15 @@ def rubber_friction(
         raise ValueError("velocity x a_T(temperature) x q leaves floating-point range; check the units and the shift")
     _coverage(material, psd.q_l, q1, (psd.q_l * vb * aT, q1 * vb * aT))
 
-    coarse = _pass(psd, material, sigma0, vb, aT, bT, q1, S, modulus_in_G == "reduced", soft, 1)
-    fine = _pass(psd, material, sigma0, vb, aT, bT, q1, S, modulus_in_G == "reduced", soft, 2)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore", under="ignore"):  # judged just below
+        coarse = _pass(psd, material, sigma0, vb, aT, bT, q1, S, modulus_in_G == "reduced", soft, 1)
+        fine = _pass(psd, material, sigma0, vb, aT, bT, q1, S, modulus_in_G == "reduced", soft, 2)
     mu, A, qn, G, G1, P = fine
+    if not (np.all(np.isfinite(mu)) and np.all(np.isfinite(coarse[0])) and np.all(np.isfinite(G1))):
+        raise ValueError(
+            f"sigma0 = {sigma0!r} against the rubber's moduli leaves floating-point range in the friction integrals; "
+            "use one pressure unit for sigma0 and the moduli"
+        )
     n = qn.size + 2
     q_out = np.concatenate([[psd.q_l], qn, [q1]])
     G_out = np.concatenate([np.zeros((vb.size, 1)), G, G1[:, None]], axis=1)

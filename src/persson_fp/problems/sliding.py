@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from persson_fp.problems.contact import ContactProblem
-from persson_fp.theory.sliding import SlidingViscoelastic
+from persson_fp.theory.sliding import SlidingViscoelastic, check_spectrum
 
 __all__ = ["sliding_contact"]
 
@@ -72,6 +72,7 @@ def sliding_contact(
     ValueError
         A parameter out of range (named).
     """
+    check_spectrum(psd)
     response = SlidingViscoelastic(material, velocity, temperature, modulus_in_G, strain_softening)
     V_max = float(response.V(psd))
     m3 = float(psd.moment_unchecked(3, np.float64(psd.zeta_max)))

@@ -49,6 +49,7 @@ __all__ = [
     "SlidingViscoelastic",
     "MODULI_IN_G",
     "check_material",
+    "check_spectrum",
     "check_modulus_in_G",
     "check_strain_softening",
     "breakpoints",
@@ -67,6 +68,15 @@ def check_material(material) -> ViscoelasticMaterial:
             f"{type(material).__name__}"
         )
     return material
+
+
+def check_spectrum(psd):
+    """``psd`` if it is a spectrum (:class:`persson_fp.PSD`), else a ValueError naming ``psd``."""
+    from persson_fp.surfaces.psd import PSD
+
+    if not isinstance(psd, PSD):
+        raise ValueError(f"psd must be a spectrum (pf.SelfAffinePSD, pf.TabulatedPSD, a PSD), got {type(psd).__name__}")
+    return psd
 
 
 def check_modulus_in_G(modulus_in_G) -> str:
@@ -449,6 +459,12 @@ class SlidingViscoelastic(ElasticResponse):
         c = self._cache
         if c is not None and c[0] is psd:
             return c[1]
+        check_spectrum(psd)
+        if not np.isfinite(psd.q_s * self.velocity * self.aT):
+            raise ValueError(
+                f"velocity {self.velocity!r} x a_T {self.aT!r} x q_s {psd.q_s!r} leaves floating-point range; check "
+                "the units of the speed and of the spectrum"
+            )
         rule = LnQRule(psd, psd.q_s, graded=False)
         g = self.integrand(psd, rule.q)
         n_p = rule.left.size

@@ -136,7 +136,7 @@ class WLF(ShiftLaw):
                 f"temperature must be above T_ref - C2 = {T_ref - self.C2!r} degrees C for the WLF shift "
                 f"(C2 = {self.C2!r}); got {float(np.min(T))!r}"
             )
-        return -self.C1 * dT / (self.C2 + dT)
+        return -self.C1 * (dT / (self.C2 + dT))  # (the ratio first: no overflow at absurd temperatures)
 
 
 class Arrhenius(ShiftLaw):
@@ -701,8 +701,18 @@ def kramers_kronig_misfit(omega, E_storage, E_loss, per_decade: float = 10.0) ->
     """
     from scipy.optimize import nnls
 
-    w = np.asarray(omega, dtype=float)
-    E1, E2 = np.asarray(E_storage, dtype=float), np.asarray(E_loss, dtype=float)
+    w = as_float_array(omega, "omega")
+    E1, E2 = as_float_array(E_storage, "E_storage"), as_float_array(E_loss, "E_loss")
+    if w.ndim != 1 or w.size < 3 or E1.shape != w.shape or E2.shape != w.shape:
+        raise ValueError(
+            f"omega, E_storage and E_loss must be 1-D of one length >= 3, got shapes {w.shape}, {E1.shape}, {E2.shape}"
+        )
+    if np.any(w <= 0) or np.any(np.diff(w) <= 0):
+        raise ValueError("omega must be > 0 and strictly increasing (rad/s)")
+    for name, col in (("E_storage", E1), ("E_loss", E2)):
+        if np.any(col <= 0):
+            raise ValueError(f"{name} must be > 0, got {float(np.min(col))!r}")
+    per_decade = as_positive_scalar(per_decade, "per_decade")
     lo, hi = np.log10(1.0 / w[-1]) - 1.0, np.log10(1.0 / w[0]) + 1.0
     tau = np.logspace(lo, hi, max(int(np.ceil((hi - lo) * per_decade)) + 1, 2))
     x = w[:, None] * tau[None, :]
