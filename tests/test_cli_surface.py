@@ -173,10 +173,32 @@ def test_surface_command_fuzzed_files_and_options_are_one_line_errors(tmp_path, 
         np.save(path, np.random.default_rng(0).standard_normal((32, 32)))
     else:
         path.write_bytes(content)
-    argv = ["surface", str(path), "--n-loads", "4", "--output", str(tmp_path / "o")]
+    # white noise on a unit square has an rms slope of ~34: --trust-units lets the other options' checks speak
+    argv = ["surface", str(path), "--n-loads", "4", "--trust-units", "--output", str(tmp_path / "o")]
     argv += extra if "--size" in extra else ["--size", "1", *extra]
     rc = main(argv)
     captured = capsys.readouterr()
     err = captured.err.strip()
     assert rc == 2 and len(err.splitlines()) == 1 and message in err and "Traceback" not in err, err
     assert all(ln.startswith(("warning: ", "note: ")) or "Warning" not in ln for ln in captured.out.splitlines())
+
+
+@pytest.mark.parametrize("size, expect", [("1e-3", "too steep"), ("1e9", "too flat")])
+def test_surface_heights_and_size_in_different_units_are_refused(tmp_path, capsys, size, expect):
+    """Heights of rms 1 (micrometres) with a size in metres give an rms slope of ~1e4: refused as a unit slip, with
+    the slope computed here from the heights' finite differences as the reference of 'too steep'."""
+    rng = np.random.default_rng(3)
+    h = np.cumsum(np.cumsum(rng.standard_normal((32, 32)), axis=0), axis=1)
+    h = (h - h.mean()) / h.std()
+    path = tmp_path / "um.npy"
+    np.save(path, h)
+    L = float(size)
+    slope = np.sqrt(np.mean(np.gradient(h, L / 32, axis=0) ** 2 + np.gradient(h, L / 32, axis=1) ** 2))
+    assert (slope > 10) == (expect == "too steep") and (slope < 1e-6) == (expect == "too flat")
+    rc = main(["surface", str(path), "--size", size, "--output", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert rc == 2 and expect in err and "--trust-units" in err and len(err.strip().splitlines()) == 1
+    rc = main(
+        ["surface", str(path), "--size", size, "--trust-units", "--n-loads", "3", "--output", str(tmp_path / "o")]
+    )
+    assert rc == 0

@@ -40,6 +40,7 @@ def add_parser(sub):
     fr.add_argument("file", nargs="?", default=None, help="height map of the road (.npy or text), with --size")
     fr.add_argument("--size", type=float, nargs="+", default=None, help="physical size Lx [Ly] of the height map, m")
     fr.add_argument("--periodic", action="store_true", help="the height map is periodic (no detrending, no window)")
+    fr.add_argument("--trust-units", action="store_true", help="accept a height map's rms slope outside 1e-6..10")
     fr.add_argument("--psd", default=None, help="the road's isotropic spectrum: CSV with header columns q,C (SI)")
     mat = fr.add_mutually_exclusive_group(required=True)
     mat.add_argument("--master-curve", default=None, help="DMA master curve CSV: frequency, E_storage, E_loss")

@@ -36,6 +36,11 @@ def add_parser(sub):
     s.add_argument("file", help="height map (.npy, or text: whitespace/comma separated) or contact.engineering CSV")
     s.add_argument("--size", type=float, nargs="+", default=None, help="physical size Lx [Ly] of a height map, length")
     s.add_argument("--periodic", action="store_true", help="the height map is periodic (no detrending, no window)")
+    s.add_argument(
+        "--trust-units",
+        action="store_true",
+        help="accept an rms slope outside 1e-6..10 (otherwise taken as heights and --size in different units)",
+    )
     s.add_argument("--series", default=_SERIES, help=f"contact.engineering series (default {_SERIES!r})")
     s.add_argument("--H", type=float, default=None, help="1-D PSD series: Abel factor of this H (default: numerical)")
     s.add_argument("--E-star", type=float, default=1.0, help="plane-strain modulus E/(1-nu^2), pressure (default 1)")
@@ -76,7 +81,7 @@ def _read(args):
         print("note: --H and --series apply to contact.engineering CSV files only; ignored for a height map")
     size = args.size[0] if len(args.size) == 1 else args.size
     try:
-        return read_heightmap(path, size, periodic=args.periodic)
+        return _check_units(read_heightmap(path, size, periodic=args.periodic), args)
     except (ArithmeticError, ValueError) as e:  # ArithmeticError: overflow, or numpy's FloatingPointError
         if isinstance(e, ArithmeticError) or "floating-point range" in str(e) or str(e).startswith("C must be finite"):
             raise ValueError(
@@ -84,6 +89,28 @@ def _read(args):
                 f"floating-point range ({e}); rescale the length unit"
             ) from None
         raise
+
+
+SLOPE_RANGE = (1e-6, 10.0)
+"""rms slopes a measured height map can have: outside, the heights and ``--size`` are in different units (heights in
+micrometres with a size in metres give slopes 1e6 too steep; the reverse 1e6 too flat).  Machined, polished and
+rough surfaces measure 1e-4 to ~3; ``--trust-units`` accepts any value."""
+
+
+def _check_units(surf, args):
+    """Refuse a height map whose rms slope says that its heights and ``--size`` are in different units."""
+    slope = surf.rms_slope_data if surf.rms_slope_data is not None else float(surf.psd.rms_slope)
+    lo, hi = SLOPE_RANGE
+    if getattr(args, "trust_units", False) or lo <= slope <= hi:
+        return surf
+    size = " ".join(f"{v:g}" for v in args.size)
+    factor = "too steep" if slope > hi else "too flat"
+    raise ValueError(
+        f"the height map with --size {size} has an rms slope of {slope:.3g}, {factor} for a measured surface "
+        f"(expected {lo:g} to {hi:g}): the heights and --size are probably in different units (heights in "
+        "micrometres with a size in metres change the slope by 1e6); give --size in the heights' unit, or pass "
+        "--trust-units"
+    )
 
 
 def cmd_surface(args) -> int:
