@@ -55,6 +55,7 @@ from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.coefficients import Coefficients
 from persson_fp.solvers.chebyshev.magnus import magnus_march
+from persson_fp.solvers.chebyshev.shared import solve_shared
 from persson_fp.solvers.chebyshev.wall import check_wall_problem, solve_moving_wall
 
 __all__ = ["ChebyshevSolver"]
@@ -388,6 +389,10 @@ class ChebyshevSolver(Solver):
         if self.path == "moving-wall":  # (chosen in validate)
             return solve_moving_wall(pr, o, self.zeta_out, self.V_out, self.max_time, self.max_memory)
         tol = o["tol"]
+        if self.path != "magnus" and pr.n_loads > 1 and o["n_p"] is None and o["V0_fraction"] is None:
+            out = solve_shared(self, tol)  # loads on one grid share its modes (None: the grid cannot serve them)
+            if out is not None:
+                return out
         doms = []
         for V in self.V_out:  # a far wall per station (a loop, not a comprehension: one frame less below it)
             doms.append(self._domain(tol, float(V)))
