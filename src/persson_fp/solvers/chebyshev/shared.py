@@ -103,23 +103,27 @@ class SharedModes:
         self.n, self.p_max = n, p_max
         p = g.p[0]
         b, c = cf.at(g.p)
-        self.b, self.c = b, c
         D1, D2 = g.D1[0], g.D2[0]
-        Lf = collocation.generator(g, b, c)[0]
+        self.L = collocation.generator(g, b, c)[0]  # (the forward operator: its round-off floor)
         Gfull = 0.5 * b[0][:, None] * D2 + (0.0 if c is None else c[0][:, None] * D1)
         Gb = Gfull[1:-1, 1:-1]
-        self.L = Lf
-        lf, R = np.linalg.eig(Lf)
-        lb, U = np.linalg.eig(Gb)
-        of, ob = np.argsort(-lf.real, kind="stable"), np.argsort(-lb.real, kind="stable")
-        self.lam, self.lam_b = lf[of], lb[ob]
-        R, U = R[:, of], U[:, ob]
+        lam, U = np.linalg.eig(Gb)
+        order = np.argsort(-lam.real, kind="stable")
+        lam, U = lam[order], U[:, order]
+        # the speed density m = exp(int_0^p 2 c / b) / b (up to a constant): phi_k = m psi_k
+        with np.errstate(all="ignore"):
+            m = 1.0 / b[0]
+            if c is not None:  # int_0^p 2 c / b by the Chebyshev derivative with I(0) = 0 (spectral)
+                expo = np.zeros(n + 1)
+                expo[1:] = np.linalg.solve(D1[1:, 1:], (2.0 * c[0] / b[0])[1:])
+                m = m * np.exp(expo - np.max(expo[1:-1]))
+        m = m[1:-1]
         w = g.w[0, 1:-1]
-        N = np.sum(w[:, None] * R * U, axis=0)
-        self.real = not (np.any(self.lam.imag != 0.0) or np.any(self.lam_b.imag != 0.0))
+        N = np.sum((w * m)[:, None] * U * U, axis=0)
+        self.real = not np.any(lam.imag != 0.0)
         if self.real:
-            R, U, N, self.lam, self.lam_b = R.real, U.real, N.real, self.lam.real, self.lam_b.real
-        self.R, self.U, self.N = R, U, N
+            U, N, lam = U.real, N.real, lam.real
+        self.lam, self.U, self.N, self.m = lam, U, N, m
         self.w_int, self.p_int = w, p[1:-1]
         # exit at the far wall, eventually (G h = 0, h(0) = 0, h(p_max) = 1), and the drift's moment (G g = -c)
         h = np.zeros(n + 1)
@@ -131,21 +135,10 @@ class SharedModes:
             gi = np.zeros(n + 1)
             gi[1:-1] = np.linalg.solve(Gb, -c[0][1:-1])
             self.g_inf = gi
-        self.ok = bool(np.all(np.isfinite(N)) and np.all(self.lam.real < 0) and np.all(self.lam_b.real < 0))
-
-    def check_pairing(self, s_min: float, tol: float) -> bool:
-        """Do the forward and backward eigenvalues agree where it matters -- |lambda_f - lambda_b| s e^(lambda s)
-        below tol / 10 at the smallest span ``s_min``, the effect of the mismatch on a mode's weight -- with every
-        N_k of a mode that is not damped below 1e-16 well away from 0?  (False: the grid does not resolve them.)"""
-        with np.errstate(under="ignore"):
-            weight = np.exp(self.lam.real * s_min)
-        if not np.all(np.abs(self.lam - self.lam_b) * s_min * weight <= 0.1 * tol):
-            return False
-        keep = weight > 1e-16
-        scale = np.sqrt(np.sum(self.w_int[:, None] * np.abs(self.R) ** 2, axis=0)) * np.sqrt(
-            np.sum(self.w_int[:, None] * np.abs(self.U) ** 2, axis=0)
-        )
-        return bool(np.all(np.abs(self.N[keep]) >= 1e-8 * scale[keep]))
+        scale = np.sum((w * m)[:, None] * np.abs(U) ** 2, axis=0)
+        self.ok = bool(
+            np.all(np.isfinite(m)) and np.all(m > 0) and np.all(np.isfinite(N)) and np.all(lam.real < 0)
+        ) and bool(np.all(np.abs(N) >= 1e-10 * scale))
 
     def coefficients_of(self, p_bar: np.ndarray) -> np.ndarray:
         """psi_k(p_bar) / N_k, (n_loads, modes): the start's weight on each mode."""
@@ -158,7 +151,7 @@ class SharedModes:
         load: (n_loads, n - 1)."""
         with np.errstate(under="ignore"):
             e = np.exp(self.lam * s)
-        P = (C * e) @ self.R.T
+        P = ((C * e) @ self.U.T) * self.m
         return P.real if not self.real else P
 
 
@@ -206,16 +199,20 @@ def solve_shared(solver, tol: float) -> SolverOutput | None:
     spans = V_out if solver.path == "exponential" else np.array([cf.tau(0.0, float(V)) for V in V_out])
     if not (np.all(cf.at(pb)[0] > 0) and np.all(spans > 0)):
         return None  # (the per-load path names the cause)
-    # the first degree: the Lamperti length of [0, p_max] in kernel widths sqrt(s) of the first station (a heat
-    # kernel 10 widths from the far wall: L1 1e-7 at n = 32, 5e-11 at n = 48)
+    # the first degree: the geometric mean of p_max in kernel widths sqrt(b s) at the loads and of the Lamperti
+    # length of [0, p_max] in widths sqrt(s), at the first station (the plain grid's spacing is uniform in arccos,
+    # neither in p nor in the Lamperti distance).  The degrees the estimate settles at (homogenised, and B2 =
+    # (1 + p / (2 p0)) V' with loads 1e-3..3 sqrt(V)) are 2.5-2.7x that mean at tol 1e-4, 3.2-3.5x at 1e-6
+    s_min = float(np.min(spans))
+    widths = p_max / math.sqrt(float(np.min(cf.at(pb)[0])) * s_min)
     y_len = float(collocation.lamperti_distance(lambda q: cf.at(q)[0], np.array(0.0), np.array(p_max)))
-    n = max(24, int(math.ceil((0.8 + 0.35 * math.log10(1.0 / tol)) * y_len / math.sqrt(float(np.min(spans))))))
+    n = max(24, int(math.ceil((1.2 + 0.3 * math.log10(1.0 / tol)) * math.sqrt(widths * y_len / math.sqrt(s_min)))))
     deadline = time.perf_counter() + solver.max_time
-    runs = 0
+    runs, prev = 0, None
     while True:
         if n > N_SHARED_MAX:
             return None
-        n2 = max(16, int(round(0.75 * n)))
+        n2 = max(16, int(round(0.75 * n)))  # (the first partner's degree)
         need = shared_memory(n, pb.size, spans.size)
         if need > solver.max_memory:
             raise ValueError(
@@ -223,12 +220,11 @@ def solve_shared(solver, tol: float) -> SolverOutput | None:
                 f"of memory (estimate), more than max_memory = {solver.max_memory / 2**20:.3g} MiB; use fewer loads "
                 "per call or pass a larger max_memory (bytes)"
             )
-        main, part = SharedModes(n, p_max, cf), SharedModes(n2, p_max, cf)
+        main = SharedModes(n, p_max, cf)
+        # the partner: the last degree's modes (n / 1.3) where there is one, else a run at 3/4 of the degree
+        part = prev if prev is not None else SharedModes(n2, p_max, cf)
         if not (main.ok and part.ok):
             return None
-        if not main.check_pairing(float(np.min(spans)), tol):  # modes the grid does not resolve yet
-            n = int(math.ceil(1.3 * n))
-            continue
         # in chunks of loads: the temporaries (the partner's P, differences) stay within CHUNK loads
         P = A = F = far = moment = A2 = F2 = far2 = L1 = est = None  # (the last degree's: released first)
         P = np.zeros((spans.size, pb.size, n + 1))
@@ -239,7 +235,7 @@ def solve_shared(solver, tol: float) -> SolverOutput | None:
             A[:, ch], F[:, ch], far[:, ch], moment[:, ch] = _run(main, pb[ch], spans, P[:, ch])
             A2[:, ch], F2[:, ch], far2[:, ch], _ = _run(part, pb[ch], spans)
             L1[:, ch] = _l1_difference(main, part, P[:, ch], pb[ch], spans)
-        runs += 2
+        runs += 1 if part is prev else 2
         hard = sigma is not None
         floor = np.maximum(
             4.0 * np.finfo(float).eps * n * n, collocation.roundoff_floor(main.L[None], float(spans[-1]), n)[0]
@@ -276,7 +272,7 @@ def solve_shared(solver, tol: float) -> SolverOutput | None:
             break
         if float(np.max(floor)) >= 0.3 * worst or time.perf_counter() > deadline:
             return None  # (the per-load path refuses it with its own reasons, or reaches it)
-        n = int(math.ceil(1.3 * n))
+        n, prev = int(math.ceil(1.3 * n)), main
     law = pb + moment - (0.0 if hard else p_max * far)
     info = {
         "path": solver.path,
