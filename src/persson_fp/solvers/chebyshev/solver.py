@@ -63,6 +63,7 @@ __all__ = ["ChebyshevSolver"]
 N_MAX = 400
 """Largest polynomial degree the adaptive loop reaches (a dense 400 x 400 exponential: ~50 ms)."""
 TIME_SHARE = 1.0
+SHARED_MIN_LOADS = 1
 _GL96 = np.polynomial.legendre.leggauss(96)
 """The Magnus march's first tolerance, as a share of ``tol`` (lowered 4x when the march dominates the estimate)."""
 
@@ -389,7 +390,7 @@ class ChebyshevSolver(Solver):
         if self.path == "moving-wall":  # (chosen in validate)
             return solve_moving_wall(pr, o, self.zeta_out, self.V_out, self.max_time, self.max_memory)
         tol = o["tol"]
-        if self.path != "magnus" and pr.n_loads > 1 and o["n_p"] is None and o["V0_fraction"] is None:
+        if self.path != "magnus" and pr.n_loads >= SHARED_MIN_LOADS and o["n_p"] is None and o["V0_fraction"] is None:
             out = solve_shared(self, tol)  # loads on one grid share its modes (None: the grid cannot serve them)
             if out is not None:
                 return out
