@@ -254,6 +254,10 @@ class Solver:
     def validate(self) -> None:
         """Check ``self.opts`` (raise ``ValueError`` naming the option and its range)."""
 
+    def memory_options(self) -> dict:
+        """What the method's memory model needs beyond its options (e.g. which engine runs); none by default."""
+        return {}
+
     def _solve(self) -> SolverOutput:  # pragma: no cover - abstract
         raise NotImplementedError
 
@@ -311,7 +315,7 @@ class Solver:
             o["n_p"] = n_p
         if o.get("n_p", 0) is None:
             return
-        o["front_fixed"] = bool(self.problem.moving_wall or self.problem.general)
+        o.update(self.memory_options())
         args = (o, self.problem.n_loads, self.zeta_out.size, self.problem.fudge.name != "none")
         need = float(model(*args))
         secs = float(TIME_MODELS[self.name](*args)) if self.name in TIME_MODELS else 0.0

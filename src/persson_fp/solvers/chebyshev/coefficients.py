@@ -8,9 +8,10 @@ In the variance-like variable V (dV = V'(zeta) dzeta) the Fokker--Planck equatio
 Where b and c do not depend on V (B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta: the homogenised theory, any
 pressure-dependent diffusion of that form) the collocated operator is constant and one exponential propagates it
 exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver marches it with adaptive Magnus
-steps (:mod:`persson_fp.solvers.chebyshev.magnus`). The form is detected by sampling b and c on 33 pressures at 9
-magnifications (relative tolerance 1e-9), and confirmed: the separable form by an adaptive quadrature in zeta (int
-B2(p*, zeta) / b(p*) dzeta must be V(zeta_max)), the clock form at 129 magnifications. A third form is exact too: b
+steps (:mod:`persson_fp.solvers.chebyshev.magnus`). The form is found in one pass of sampling b and c on 33
+pressures (relative tolerance 1e-9): at 1025 log-spaced magnifications in one call of each coefficient where it
+broadcasts over an array of zeta (its rows checked against calls with a scalar zeta), else at 33 magnifications, one
+call each; the clock form is confirmed at 129 magnifications. A third form is exact too: b
 = s(V) b(p, V_max), c = s(V) c(p, V_max) (a zeta-dependent factor common to both, e.g. B2 = b(p) g(zeta) with any
 g): in the clock tau = int s dV it is the separable form, and one exponential over the clock's increment
 (``Coefficients.tau``) propagates it.
@@ -89,7 +90,7 @@ class Coefficients:
         if n_z == 33:  # the envelope's magnifications (the domain's): every 4th
             self._probe_z = zs[::4][pr.V_kernels.dV_dzeta(zs[::4]) > 0]
         dense = None
-        if pr.general and n_z == 33:
+        if n_z == 33:
             zd = np.geomspace(1.0 + 1e-9, z_ref, 1025)
             dense = self._sample_broadcast(probe, zd)
             if dense is not None:
@@ -100,12 +101,9 @@ class Coefficients:
         g = np.asarray(pr.V_kernels.dV_dzeta(zs), dtype=float)
         keep = g > 0
         zs, g = zs[keep], g[keep]
-        if pr.general:
-            B1s, B2s = self._sample(probe, zs) if dense is None else (None if v is None else v[keep] for v in dense)
-            bs = B2s / g[:, None]
-            cs = np.zeros_like(bs) if B1s is None else B1s / g[:, None]
-        else:
-            bs, cs = np.ones((zs.size, probe.size)), np.zeros((zs.size, probe.size))
+        B1s, B2s = self._sample(probe, zs) if dense is None else (None if v is None else v[keep] for v in dense)
+        bs = B2s / g[:, None]
+        cs = np.zeros_like(bs) if B1s is None else B1s / g[:, None]
         scale_b = max(float(np.max(np.abs(bs))), 1e-300)
         scale_c = max(float(np.max(np.abs(cs))), scale_b / max(probe[-1], 1e-300), 1e-300)
         self.drift = bool(np.any(cs != 0.0))
@@ -122,6 +120,10 @@ class Coefficients:
         )
         self._p_star = float(probe[j])
 
+    def _callables(self):
+        """(B1, B2) as the user gave them (None: the default, 0 and dV/dzeta; a ContactProblem has neither)."""
+        return getattr(self.problem, "B1_fun", None), getattr(self.problem, "B2_fun", None)
+
     def _sample_broadcast(self, p, zs):
         """(B1 or None, B2), each (len(zs), p.size), from one call of each coefficient with p (1, m) and zeta
         (len(zs), 1) -- None where a coefficient does not broadcast so (raises, another shape, other values than
@@ -129,7 +131,7 @@ class Coefficients:
         and name a bad value).  A bad value (non-finite; B2 < 0) is named by the checked call at its zeta."""
         pr = self.problem
         out = []
-        for k, f in enumerate((pr.B1_fun, pr.B2_fun)):
+        for k, f in enumerate(self._callables()):
             if f is None:
                 out.append(None if k == 0 else np.asarray(pr.V_kernels.dV_dzeta(zs), float)[:, None] * np.ones(p.size))
                 continue
@@ -158,7 +160,7 @@ class Coefficients:
         for a magnification where not (it broadcasts a scalar or a list, or raises naming the bad value)."""
         pr = self.problem
         out = []
-        for name, f in (("B1", pr.B1_fun), ("B2", pr.B2_fun)):
+        for name, f in zip(("B1", "B2"), self._callables()):
             if f is None:
                 out.append(
                     None if name == "B1" else np.asarray(pr.V_kernels.dV_dzeta(zs), float)[:, None] * np.ones(p.size)

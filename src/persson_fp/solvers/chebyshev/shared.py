@@ -1,4 +1,4 @@
-r"""Loads that share one grid: the transition density of a separable problem from one pair of eigendecompositions.
+r"""Loads that share one grid: the transition density of a separable problem from one eigendecomposition.
 
 Where b and c per unit V do not depend on V (``"exponential"`` path of :mod:`persson_fp.solvers.chebyshev`) or do
 so through a common factor only (``"clock"`` path, in the clock tau), every load p_bar evolves under the same
@@ -10,11 +10,13 @@ operator :math:`\mathcal L P = \tfrac12 (bP)'' - (cP)'` with absorbing walls; on
 
 with :math:`\varphi_k` the eigenfunctions of :math:`\mathcal L` (forward) and :math:`\psi_k` those of its adjoint
 :math:`\mathcal G u = \tfrac12 b u'' + c u'` (backward), both with Dirichlet walls and the same eigenvalues
-:math:`\lambda_k < 0`.  Both are taken from the Chebyshev collocation matrices of the two operators on one plain
-Chebyshev grid of [0, p_max] (their right eigenvectors: spectrally accurate for the modes the grid resolves), N_k
-by Clenshaw--Curtis, :math:`\psi_k(\bar p)` by barycentric interpolation (spectral in p_bar: the eigenfunctions
-are smooth).  The modes the grid does not resolve are damped by :math:`e^{\lambda_k s}` at every station the grid
-is fit for (the degree is raised until the estimate below meets tol).  No start expansion at a small V0 is
+:math:`\lambda_k < 0`.  The operator is symmetric in the speed measure, so that :math:`\varphi_k = m\,\psi_k` with
+:math:`m = e^{\int_0^p 2c/b} / b` (up to a constant): one eigendecomposition, of the Chebyshev collocation matrix of
+:math:`\mathcal G` on one plain Chebyshev grid of [0, p_max] (its right eigenvectors: spectrally accurate for the
+modes the grid resolves; m by the Chebyshev derivative's inverse), N_k by Clenshaw--Curtis, :math:`\psi_k(\bar p)`
+by barycentric interpolation (spectral in p_bar: the eigenfunctions are smooth).  The modes the grid does not
+resolve are damped by :math:`e^{\lambda_k s}` at every station the grid is fit for (the degree is raised until
+the estimate below meets tol).  No start expansion at a small V0 is
 needed: the delta is exact at s = 0.  (Feeding the delta to the forward collocation alone, as the nodal vector
 :math:`\ell_i(\bar p)/w_i`, converges only algebraically, ~n^-3: the collocation matrix is not self-adjoint in the
 quadrature's inner product, so its left eigenvectors are not the adjoint eigenfunctions.)
@@ -26,11 +28,12 @@ probability :math:`h(\bar p, s) = h_\infty(\bar p) - \int K h_\infty\,dp` with :
 :math:`\mathcal G g_\infty = -c` (both collocation solves, shared).  Memory per load is its P at the stations and a
 few vectors of the degree's size; the operator's work is done once.
 
-Error estimate: the difference from a partner at 3/4 of the degree (per station and load; interpolated onto this
-grid, one matrix for all loads), plus twice the far-wall mass (no hardness) and the round-off floor of
-:func:`~persson_fp.solvers.chebyshev.collocation.roundoff_floor`.  Used by
-:class:`~persson_fp.solvers.chebyshev.ChebyshevSolver` for more than one load where the degree the common grid
-needs is within reach; otherwise the per-load path runs.
+Error estimate: the difference from a partner run at a lower degree, the last degree tried (1/1.3 of this one)
+or 3/4 of it (per station and load; interpolated onto this grid, one matrix for all loads), plus twice the
+far-wall mass (no hardness) and the round-off floor of ``collocation.roundoff_floor``
+(:mod:`persson_fp.solvers.chebyshev.collocation`).  Used by method ``"chebyshev"``
+(:mod:`persson_fp.solvers.chebyshev.solver`) for any number of loads where the degree the common grid needs is
+within reach (``N_SHARED_MAX``); otherwise the per-load path runs.
 """
 
 from __future__ import annotations
@@ -295,7 +298,8 @@ def solve_shared(solver, tol: float) -> SolverOutput | None:
             "plastic_area": est["plastic_area"],
             "noncontact_area": est["noncontact_area"],
             "load": est["load"],
-            "method": "|run - run at 3/4 degree| + 2 x far-wall mass + max(4 eps n^2, eps ||L dV||_1 (n/400)^2)",
+            "method": "|run - run at the last degree tried (or 3/4 degree)| + 2 x far-wall mass "
+            "+ max(4 eps n^2, eps ||L dV||_1 (n/400)^2)",
             "parts": {"time": np.zeros_like(A), "roundoff": np.broadcast_to(floor, A.shape).copy()},
         },
         "far_wall_mass": np.zeros_like(far) if hard else far,

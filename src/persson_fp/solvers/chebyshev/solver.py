@@ -17,6 +17,9 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   adaptive fourth-order commutator-free exponential (Magnus-type) steps in V, step doubling for the step size and
   a companion march at the doubled steps for the estimate (:mod:`persson_fp.solvers.chebyshev.magnus`), tightened
   when it dominates the estimate; ``info["march"]`` counts the steps, rejected steps and exponentials.
+* On the first two paths the loads share one plain Chebyshev grid and the modes of its operator (one
+  eigendecomposition of the adjoint for every load and station; :mod:`persson_fp.solvers.chebyshev.shared`,
+  ``info["loads"]``), with no start at V0, where that grid's degree stays within reach; else the per-load grids below.
 * ``"moving-wall"`` -- a scale-dependent hardness (no fudge factor): front-fixed in x = p / sigma_Y, the wall value
   beta A_pl lifted, the same kind of march (:mod:`persson_fp.solvers.chebyshev.wall`, which has its own estimate).
 
