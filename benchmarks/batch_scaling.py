@@ -11,13 +11,26 @@ more call (``tracemalloc``, which sees numpy's buffers); and the worst |dA*| aga
 Output: batch_scaling.csv and batch_scaling.md (time per load, growth from 1000 to 1e4 loads, the ratio of
 the two thread settings, memory).
 
-    python benchmarks/batch_scaling.py [--quick] [--repeats 5]
+With ``--chebyshev``: method ``"chebyshev"`` on loads that share their coefficients (no fudge factor), one
+batched call against a Python loop of one call per load, for 100 and 1000 loads p_bar / sqrt(V) log-spaced on
+[1e-3, 3] and two problems of the reference spectrum: the homogenised ``ContactProblem`` and the
+``FokkerPlanckProblem`` with B2 = (1 + p / (2 p0)) dV/dzeta, p0 = 0.5 sqrt(V) fixed (the same B2 for every
+load), at tol 1e-4 and 1e-6 (one call per load refuses 1e-8 at some of these loads).  Per case: the median
+time of the batched call and of the loop (called in turn within each repeat; one repeat of a loop over 1000
+loads), their ratio, the largest |A*_batch - A*_loop| and the largest estimate, and the peak memory of the
+batched call in a fresh process after a call on two of its loads (lazy imports, caches): ``tracemalloc``'s
+peak and the growth of the resident set's peak (``ru_maxrss``) over it.
+Output: batch_chebyshev.csv and batch_chebyshev.md.
+
+    python benchmarks/batch_scaling.py [--quick] [--repeats 5] [--chebyshev]
 """
 
 from __future__ import annotations
 
+import json
 import os
 import statistics
+import subprocess
 import sys
 import time
 import tracemalloc
@@ -64,7 +77,11 @@ def timed(fns, repeats):
 
 
 def main(argv=None):
-    args = parser(__doc__).parse_args(argv)
+    p = parser(__doc__)
+    p.add_argument("--chebyshev", action="store_true", help="chebyshev: one batched call vs a loop of single calls")
+    args = p.parse_args(argv)
+    if args.chebyshev:
+        return chebyshev_main(args)
     out = outdir(args)
     repeats = args.repeats or (3 if args.quick else 5)
     loads = (1, 10, 100) if args.quick else (1, 10, 100, 1000, 10_000)
@@ -160,6 +177,144 @@ def main(argv=None):
         + "\n"
     )
     with open(os.path.join(out, "batch_scaling.md"), "w") as fh:
+        fh.write(text)
+    print(text)
+    return rows
+
+
+CHEB_TARGET_RATIO, CHEB_TARGET_MB = 10.0, 200.0
+
+_PEAK_CHILD = """
+import json, resource, sys, tracemalloc, warnings
+import numpy as np
+import persson_fp as pf
+sys.path.insert(0, {here!r})
+from batch_scaling import cheb_problem
+warnings.simplefilter("ignore")
+pr = cheb_problem({scene!r}, {n})
+pf.solve(pr.with_loads(pr.p_bar[:2]), "chebyshev", tol={tol!r})  # (lazy imports and caches: not measured)
+rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+tracemalloc.start()
+sol = pf.solve(pr, "chebyshev", tol={tol!r})
+peak = tracemalloc.get_traced_memory()[1]
+tracemalloc.stop()
+rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - rss0
+print(json.dumps({{"peak_MB": peak / 1e6, "rss_growth_MB": rss / 1e3, "n_p": sol.info["grid"]["n_p"]}}))
+"""
+
+
+def cheb_problem(scene: str, n: int):
+    """The batch of ``n`` loads (p_bar / sqrt(V) log-spaced on [1e-3, 3]) of a chebyshev scene."""
+    base = pf.ContactProblem.reference()
+    sv = float(np.sqrt(base.V_max))
+    loads = (np.geomspace(1e-3, 3.0, n) if n > 1 else np.array([0.5])) * sv
+    if scene == "homogenised":
+        return pf.ContactProblem(base.psd, base.E_star, loads)
+    psd, E, p0 = base.psd, base.E_star, 0.5 * sv
+    return pf.FokkerPlanckProblem(psd, E, loads, B2=lambda p, z: (1 + p / (2 * p0)) * psd.dV_dzeta(z, E))
+
+
+def _peak_in_fresh_process(scene, n, tol):
+    code = _PEAK_CHILD.format(here=os.path.dirname(os.path.abspath(__file__)), scene=scene, n=n, tol=tol)
+    env = dict(os.environ)
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def chebyshev_main(args):
+    out = outdir(args)
+    repeats = args.repeats or (3 if args.quick else 5)
+    loads = (10, 30) if args.quick else (100, 1000)
+    print(machine())
+    rows = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for scene in ("homogenised", "B2 = (1 + p/(2 p0)) dV/dzeta"):
+            for tol in (1e-4, 1e-6):
+                for n in loads:
+                    pr = cheb_problem(scene, n)
+                    singles = [pr.with_loads(float(pb)) for pb in pr.p_bar]
+                    batch = lambda pr=pr, tol=tol: pf.solve(pr, "chebyshev", tol=tol)  # noqa: E731
+                    loop = lambda singles=singles, tol=tol: [pf.solve(q, "chebyshev", tol=tol) for q in singles]  # noqa: E731
+                    sol, sols = batch(), loop()  # (first calls: caches and imports, not timed)
+                    reps = repeats if n <= 100 else 1
+                    tb, tl = [], []
+                    for _ in range(reps):
+                        t0 = time.perf_counter()
+                        sol = batch()
+                        tb.append(time.perf_counter() - t0)
+                        t0 = time.perf_counter()
+                        sols = loop()
+                        tl.append(time.perf_counter() - t0)
+                    A = np.reshape(sol.contact_area, (-1, n))[-1]
+                    A1 = np.array([float(np.ravel(s1.contact_area)[-1]) for s1 in sols])
+                    mem = _peak_in_fresh_process(scene, n, tol)
+                    row = {
+                        "scene": scene,
+                        "tol": tol,
+                        "n_loads": n,
+                        "batch_s": statistics.median(tb),
+                        "loop_s": statistics.median(tl),
+                        "repeats": reps,
+                        "n_p": sol.info["grid"]["n_p"],
+                        "shared": sol.info.get("loads", "per load")[:6],
+                        "max_dA_batch_vs_loop": float(np.max(np.abs(A - A1))),
+                        "max_estimate": float(np.max(sol.info["error_estimate"]["elastic_area"])),
+                        **mem,
+                    }
+                    row["loop_over_batch"] = row["loop_s"] / row["batch_s"]
+                    rows.append(row)
+                    print(
+                        f"{scene:30s} tol {tol:.0e} {n:5d} loads: batch {row['batch_s'] * 1e3:8.1f} ms, loop "
+                        f"{row['loop_s'] * 1e3:9.1f} ms, x{row['loop_over_batch']:.0f}, peak {mem['peak_MB']:.1f} MB"
+                        f", |dA| {row['max_dA_batch_vs_loop']:.1e}",
+                        flush=True,
+                    )
+    write_csv(os.path.join(out, "batch_chebyshev.csv"), rows)
+    body = [
+        [
+            r["scene"],
+            f"{r['tol']:.0e}",
+            r["n_loads"],
+            f"{r['batch_s'] * 1e3:.3g} ms",
+            f"{r['loop_s'] * 1e3:.4g} ms",
+            f"{r['loop_over_batch']:.0f}x",
+            r["n_p"],
+            f"{r['peak_MB']:.3g}",
+            f"{r['rss_growth_MB']:.3g}",
+            f"{r['max_dA_batch_vs_loop']:.1e}",
+            f"{r['max_estimate']:.1e}",
+        ]
+        for r in rows
+    ]
+    worst_ratio = min(r["loop_over_batch"] for r in rows)
+    worst_mb = max(r["peak_MB"] for r in rows)
+    text = (
+        f"# chebyshev: one batched call vs a loop of single calls (loads 1e-3..3 sqrt(V))\n\nMachine: {machine()}\n"
+        f"Command: `python benchmarks/batch_scaling.py --chebyshev{' --quick' if args.quick else ''}`; medians of "
+        f"{repeats} interleaved repeats (1 for a loop over 1000 loads); peak memory of the batched call in a fresh "
+        "process\n\n"
+        + markdown_table(
+            [
+                "problem",
+                "tol",
+                "loads",
+                "batched call",
+                "loop of single calls",
+                "loop / batch",
+                "degree",
+                "peak MB (tracemalloc)",
+                "RSS growth MB",
+                "max |A*_batch - A*_loop|",
+                "max estimate",
+            ],
+            body,
+        )
+        + f"\n\n- smallest loop / batch ratio {worst_ratio:.0f}x "
+        f"({'at or above' if worst_ratio >= CHEB_TARGET_RATIO else 'BELOW'} {CHEB_TARGET_RATIO:g}x); largest peak "
+        f"{worst_mb:.3g} MB ({'within' if worst_mb <= CHEB_TARGET_MB else 'ABOVE'} {CHEB_TARGET_MB:g} MB)\n"
+    )
+    with open(os.path.join(out, "batch_chebyshev.md"), "w") as fh:
         fh.write(text)
     print(text)
     return rows

@@ -194,6 +194,23 @@ def test_batch_scaling_quick(tmp_path):
             assert r["max_area_error"] < 1e-4 and r["default_over_1_thread"] > 0
 
 
+@pytest.mark.slow
+def test_batch_scaling_chebyshev_quick(tmp_path):
+    """One batched chebyshev call against a loop of single calls: the same areas within tol (times recorded only)."""
+    rows = _module("batch_scaling").main(["--chebyshev", "--quick", "--output", str(tmp_path)])
+    assert len(_rows(tmp_path / "batch_chebyshev.csv")) == len(rows) == 8
+    for r in rows:
+        assert r["max_dA_batch_vs_loop"] <= 2 * r["tol"] and r["peak_MB"] > 0 and r["shared"] == "shared"
+
+
+@pytest.mark.slow
+def test_separable_fixed_cost_quick(tmp_path):
+    """The parts of a chebyshev call and the hand Crank-Nicolson peer: both reach L1 1e-4 (times recorded only)."""
+    rows, cmp_rows = _module("separable_fixed_cost").main(["--quick", "--output", str(tmp_path)])
+    assert len(rows) == 6 and len(cmp_rows) == 3
+    assert all(r["true_L1"] <= 1e-4 for r in cmp_rows if r["true_L1"] == r["true_L1"])
+
+
 def test_interface_vs_bem_quick(tmp_path):
     """Gap histograms, leak rates and adhesion against the shipped BEM data, within the theory's known bands."""
     out = _module("interface_vs_bem").main(["--quick", "--output", str(tmp_path)])

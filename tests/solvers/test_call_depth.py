@@ -33,6 +33,7 @@ KERNELS = {
     ("front_fixed/fluxes.py", "apply"),
     ("chebyshev/collocation.py", "propagate_with_integral"),
     ("chebyshev/magnus.py", "cf4_step"),
+    ("chebyshev/shared.py", "density"),
 }
 """(module under solvers/, function) of the numerical kernels."""
 

@@ -181,14 +181,23 @@ class FokkerPlanckProblem(ContactProblem):
         return base.replace("ContactProblem(", "FokkerPlanckProblem(", 1)[:-1] + ", " + ", ".join(names) + ")"
 
 
+def _where(p: np.ndarray, z: float) -> str:
+    """The place of an evaluation, in words (for an error message)."""
+    lo, hi = (float(np.min(p)), float(np.max(p))) if p.size else (0.0, 0.0)
+    return f"p in [{lo:.6g}, {hi:.6g}], zeta = {z:.6g}"
+
+
 def _evaluate(name: str, f, p: np.ndarray, z: float) -> np.ndarray:
     """``f(p, z)`` as a real float array of the shape of ``p``, or a ``ValueError`` naming ``name`` and where."""
-    lo, hi = (float(np.min(p)), float(np.max(p))) if p.size else (0.0, 0.0)
-    where = f"p in [{lo:.6g}, {hi:.6g}], zeta = {z:.6g}"
     try:
         raw = f(p, z)
     except Exception as err:  # any failure of a user callable is bad input, reported with where it happened
-        raise ValueError(f"{name}(p, zeta) could not be evaluated at {where}: {type(err).__name__}: {err}") from None
+        raise ValueError(
+            f"{name}(p, zeta) could not be evaluated at {_where(p, z)}: {type(err).__name__}: {err}"
+        ) from None
+    if type(raw) is np.ndarray and raw.dtype == np.float64 and raw.shape == p.shape:
+        return raw.copy()  # (the common case: no conversion, no check of the form)
+    where = _where(p, z)
     try:
         arr = np.asarray(raw)
     except Exception as err:

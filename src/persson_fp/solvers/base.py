@@ -103,8 +103,14 @@ MEMORY_BUDGET = 4 * 2**30
 
 MEMORY_MODELS = {
     # (options, n_loads, n_stations, with_fudge) -> bytes, fitted to tracemalloc peaks (reference problem)
-    # fv: 85 MB at n_p = 2e4, 100 steps; 1.67 GB at 2000 steps (the trajectory of one load is kept)
-    "fv": lambda o, nl, nz, f: 48.0 * o["n_p"] * (o["n_steps"] + 10) + 160.0 * o["n_p"] * nl,
+    # fv: 85 MB at n_p = 2e4, 100 steps; 1.67 GB at 2000 steps (the trajectory of one load is kept); on a moving
+    # wall or general coefficients (the front-fixed engine, no trajectory): 0.40 / 0.69 / 1.48 MB at n_p = n_steps
+    # = 400 / 800 / 1600, 3.06 MB at (800, 3200), 2.05 MB at (3200, 800) -- the model 1.1-1.8x those
+    "fv": lambda o, nl, nz, f: (
+        (500.0 * o["n_p"] + 900.0 * o["n_steps"]) * nl + 1e5
+        if o.get("front_fixed")
+        else 48.0 * o["n_p"] * (o["n_steps"] + 10) + 160.0 * o["n_p"] * nl
+    ),
     # mol: ~600 B per point and load of a chunk (<= 250 loads), + dense blocks in zeta (benchmarks/mol_memory.py)
     "mol": lambda o, nl, nz, f: (
         600.0 * o["n_p"] * min(nl, 250) + 65536.0 + 24.0 * o["n_p"] ** 2 * nl * (f and o.get("variable") == "zeta")
@@ -248,6 +254,10 @@ class Solver:
     def validate(self) -> None:
         """Check ``self.opts`` (raise ``ValueError`` naming the option and its range)."""
 
+    def memory_options(self) -> dict:
+        """What the method's memory model needs beyond its options (e.g. which engine runs); none by default."""
+        return {}
+
     def _solve(self) -> SolverOutput:  # pragma: no cover - abstract
         raise NotImplementedError
 
@@ -305,6 +315,7 @@ class Solver:
             o["n_p"] = n_p
         if o.get("n_p", 0) is None:
             return
+        o.update(self.memory_options())
         args = (o, self.problem.n_loads, self.zeta_out.size, self.problem.fudge.name != "none")
         need = float(model(*args))
         secs = float(TIME_MODELS[self.name](*args)) if self.name in TIME_MODELS else 0.0

@@ -8,9 +8,10 @@ In the variance-like variable V (dV = V'(zeta) dzeta) the Fokker--Planck equatio
 Where b and c do not depend on V (B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta: the homogenised theory, any
 pressure-dependent diffusion of that form) the collocated operator is constant and one exponential propagates it
 exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver marches it with adaptive Magnus
-steps (:mod:`persson_fp.solvers.chebyshev.magnus`). The form is detected by sampling b and c on 33 pressures at 9
-magnifications (relative tolerance 1e-9), and confirmed: the separable form by an adaptive quadrature in zeta (int
-B2(p*, zeta) / b(p*) dzeta must be V(zeta_max)), the clock form at 129 magnifications. A third form is exact too: b
+steps (:mod:`persson_fp.solvers.chebyshev.magnus`). The form is found in one pass of sampling b and c on 33
+pressures (relative tolerance 1e-9): at 257 log-spaced magnifications in one call of each coefficient where it
+broadcasts over an array of zeta (its rows checked against calls with a scalar zeta), else at 33 magnifications, one
+call each; the clock form is confirmed at 129 magnifications. A third form is exact too: b
 = s(V) b(p, V_max), c = s(V) c(p, V_max) (a zeta-dependent factor common to both, e.g. B2 = b(p) g(zeta) with any
 g): in the clock tau = int s dV it is the separable form, and one exponential over the clock's increment
 (``Coefficients.tau``) propagates it.
@@ -52,19 +53,13 @@ class Coefficients:
         self._probe = np.linspace(0.0, hi, 33)
         self.z_ref = z_ref
         self._tau_cache: dict = {}
-        self._classify(9)
-        if self.separable and pr.general and float(self._per_V(np.array([self._p_star]), z_ref)[1][0]) > 0:
-            # 9 magnifications can miss a zeta-dependence between them (a bump): confirm the form by an adaptive
-            # quadrature of B2(p*, zeta) / b(p*) over [1, zeta_max], which must give V(zeta_max)
-            V_max = float(pr.V_max)
-            tau = self._tau0(V_max)
-            if not np.isfinite(tau):
-                raise ValueError("B2 is not finite at some magnification in [1, zeta_max] (found by quadrature)")
-            if abs(tau - V_max) > 1e-8 * V_max:
-                self._classify(129)
-                self.separable = False
-                self._tau_cache.clear()
-        elif self.clock:
+        # one pass (where an adaptive quadrature of B2, ~250 calls, confirmed the separable form before): 33
+        # pressures at 257 magnifications in one call of each coefficient where it broadcasts over zeta as well (its
+        # rows at the envelope's 9 magnifications checked against calls with a scalar zeta), else at 33
+        # magnifications, one call each -- dense enough in ln zeta that a zeta-dependence between the envelope's
+        # magnifications (a bump) is seen, and with 257 a bad value in a band of 2 % of zeta (ln(zeta_max) / 256)
+        self._classify(33)
+        if self.clock:
             self._classify(129)  # the clock form confirmed on a dense set (its clock is a quadrature of B2 itself)
         self._check_wall()
 
@@ -87,17 +82,28 @@ class Coefficients:
             )
 
     def _classify(self, n_z: int):
-        """Sample b, c at 33 pressures and ``n_z`` magnifications; set ``drift``, ``separable``, ``clock``."""
+        """Sample b, c at 33 pressures and ``n_z`` magnifications (and the spectrum's roll-off); set ``drift``,
+        ``separable``, ``clock``.  Each magnification is one call of B1 and B2 (vectorised in p); the values are
+        checked together, the checked ``problem.coefficients`` naming a bad one and where."""
         pr, probe, z_ref = self.problem, self._probe, self.z_ref
-        zs = [z for z in np.geomspace(1.0 + 1e-9, z_ref, n_z) if float(pr.dV_dzeta(z)) > 0]
-        if n_z == 9:  # the envelope's magnifications (the domain's; a denser set only confirms the form)
-            self._probe_z = np.array(zs)
-        bs, cs = [], []
-        for z in zs:
-            c, b = self._per_V(probe, z)
-            bs.append(b)
-            cs.append(np.zeros_like(b) if c is None else c)
-        bs, cs = np.array(bs), np.array(cs)
+        zs = np.geomspace(1.0 + 1e-9, z_ref, n_z)
+        if n_z == 33:  # the envelope's magnifications (the domain's): every 4th
+            self._probe_z = zs[::4][pr.V_kernels.dV_dzeta(zs[::4]) > 0]
+        dense = None
+        if n_z == 33:
+            zd = np.geomspace(1.0 + 1e-9, z_ref, 257)
+            dense = self._sample_broadcast(probe, zd)
+            if dense is not None:
+                zs = zd
+        zr = getattr(pr.psd, "zeta_r", None)
+        if dense is None and zr is not None and 1.0 < zr < z_ref:
+            zs = np.sort(np.append(zs, zr))
+        g = np.asarray(pr.V_kernels.dV_dzeta(zs), dtype=float)
+        keep = g > 0
+        zs, g = zs[keep], g[keep]
+        B1s, B2s = self._sample(probe, zs) if dense is None else (None if v is None else v[keep] for v in dense)
+        bs = B2s / g[:, None]
+        cs = np.zeros_like(bs) if B1s is None else B1s / g[:, None]
         scale_b = max(float(np.max(np.abs(bs))), 1e-300)
         scale_c = max(float(np.max(np.abs(cs))), scale_b / max(probe[-1], 1e-300), 1e-300)
         self.drift = bool(np.any(cs != 0.0))
@@ -113,6 +119,69 @@ class Coefficients:
             and np.max(np.abs(cs - s[:, None] * cs[-1])) <= 1e-9 * scale_c
         )
         self._p_star = float(probe[j])
+
+    def _callables(self):
+        """(B1, B2) as the user gave them (None: the default, 0 and dV/dzeta; a ContactProblem has neither)."""
+        return getattr(self.problem, "B1_fun", None), getattr(self.problem, "B2_fun", None)
+
+    def _sample_broadcast(self, p, zs):
+        """(B1 or None, B2), each (len(zs), p.size), from one call of each coefficient with p (1, m) and zeta
+        (len(zs), 1) -- None where a coefficient does not broadcast so (raises, another shape, other values than
+        its calls with a scalar zeta at 9 of the magnifications, which are the checked ``problem.coefficients``
+        and name a bad value).  A bad value (non-finite; B2 < 0) is named by the checked call at its zeta."""
+        pr = self.problem
+        out = []
+        for k, f in enumerate(self._callables()):
+            if f is None:
+                out.append(None if k == 0 else np.asarray(pr.V_kernels.dV_dzeta(zs), float)[:, None] * np.ones(p.size))
+                continue
+            try:
+                with np.errstate(all="ignore"):
+                    v = np.asarray(f(p[None, :], zs[:, None]))
+            except Exception:
+                return None
+            if v.dtype.kind not in "fiu" or v.shape != (zs.size, p.size):
+                return None
+            v = v.astype(float)
+            step = (zs.size - 1) // 8
+            ref = np.array([pr.coefficients(p, float(z))[k] for z in zs[::step]])  # (raises, naming a bad value)
+            with np.errstate(invalid="ignore"):
+                if not np.all(np.abs(v[::step] - ref) <= 1e-12 * np.abs(ref)):
+                    return None
+            bad = ~np.isfinite(v) if k == 0 else ~(v >= 0) | ~np.isfinite(v)
+            if np.any(bad):
+                pr.coefficients(p, float(zs[int(np.argmax(np.any(bad, axis=1)))]))  # (raises, naming where)
+                return None  # (a scalar call does not give the bad value: sample one magnification at a time)
+            out.append(v)
+        return out[0], out[1]
+
+    def _sample(self, p, zs):
+        """(B1 or None, B2), each (len(zs), p.size): the user's callables called directly where they return
+        float64 arrays of p's shape, checked all at once (finite; B2 >= 0); the checked ``problem.coefficients``
+        for a magnification where not (it broadcasts a scalar or a list, or raises naming the bad value)."""
+        pr = self.problem
+        out = []
+        for name, f in zip(("B1", "B2"), self._callables()):
+            if f is None:
+                out.append(
+                    None if name == "B1" else np.asarray(pr.V_kernels.dV_dzeta(zs), float)[:, None] * np.ones(p.size)
+                )
+                continue
+            rows = []
+            for z in zs:
+                try:
+                    v = f(p, float(z))
+                except Exception:
+                    v = None
+                if not (type(v) is np.ndarray and v.dtype == np.float64 and v.shape == p.shape):
+                    v = pr.coefficients(p, float(z))[0 if name == "B1" else 1]  # (broadcasts, or raises)
+                rows.append(v)
+            vals = np.array(rows)
+            bad = ~np.isfinite(vals) if name == "B1" else ~(vals >= 0) | ~np.isfinite(vals)
+            if np.any(bad):
+                pr.coefficients(p, float(zs[int(np.argmax(np.any(bad, axis=1)))]))  # (raises, naming where)
+            out.append(vals)
+        return out[0], out[1]
 
     def _per_V(self, p, z):
         """(c or None, b) per unit V at pressures ``p`` and magnification ``z``."""

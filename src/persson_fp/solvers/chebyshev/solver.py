@@ -17,6 +17,9 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   adaptive fourth-order commutator-free exponential (Magnus-type) steps in V, step doubling for the step size and
   a companion march at the doubled steps for the estimate (:mod:`persson_fp.solvers.chebyshev.magnus`), tightened
   when it dominates the estimate; ``info["march"]`` counts the steps, rejected steps and exponentials.
+* On the first two paths the loads share one plain Chebyshev grid and the modes of its operator (one
+  eigendecomposition of the adjoint for every load and station; :mod:`persson_fp.solvers.chebyshev.shared`,
+  ``info["loads"]``), with no start at V0, where that grid's degree stays within reach; else the per-load grids below.
 * ``"moving-wall"`` -- a scale-dependent hardness (no fudge factor): front-fixed in x = p / sigma_Y, the wall value
   beta A_pl lifted, the same kind of march (:mod:`persson_fp.solvers.chebyshev.wall`, which has its own estimate).
 
@@ -55,6 +58,7 @@ from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.coefficients import Coefficients
 from persson_fp.solvers.chebyshev.magnus import magnus_march
+from persson_fp.solvers.chebyshev.shared import solve_shared
 from persson_fp.solvers.chebyshev.wall import check_wall_problem, solve_moving_wall
 
 __all__ = ["ChebyshevSolver"]
@@ -62,6 +66,7 @@ __all__ = ["ChebyshevSolver"]
 N_MAX = 400
 """Largest polynomial degree the adaptive loop reaches (a dense 400 x 400 exponential: ~50 ms)."""
 TIME_SHARE = 1.0
+SHARED_MIN_LOADS = 1
 _GL96 = np.polynomial.legendre.leggauss(96)
 """The Magnus march's first tolerance, as a share of ``tol`` (lowered 4x when the march dominates the estimate)."""
 
@@ -80,8 +85,8 @@ class ChebyshevSolver(Solver):
         0.73 / 4.0 s on ``B2 = V'(1 + 0.2 (p/p_bar) ln zeta)``).
     n_p : int or None
         A fixed polynomial degree in [8, 1000] (no adaptation; the estimate is still reported).  With an explicit
-        ``tol`` as well, a run whose estimate exceeds it is a :class:`~persson_fp.SolverError` (not on a moving
-        wall, where ``tol`` with a fixed ``n_p`` sets the march and the start only).
+        ``tol`` as well, a run whose estimate exceeds it is a :class:`~persson_fp.SolverError` (on a moving wall
+        too, where ``tol`` also sets the march and the start).
     V0_fraction : float or None
         Start V0 / V(station) in (0, 0.1] (every station starts afresh from the delta); default from ``tol``.
     k_domain : float or None
@@ -376,6 +381,17 @@ class ChebyshevSolver(Solver):
             "use method='fv'"
         ) from None
 
+    @staticmethod
+    def _refuse_fixed_degree(n: int, tol: float, worst: float) -> None:
+        """The :class:`~persson_fp.SolverError` of a fixed ``n_p`` whose error estimate ``worst`` exceeds ``tol``."""
+        if worst > tol:
+            from persson_fp.results.invariants import SolverError
+
+            raise SolverError(
+                f"chebyshev: n_p = {n} cannot meet tol = {tol:.3g}: the error estimate at that fixed degree "
+                f"is {worst:.2e}; leave n_p out (the degree then adapts to tol), raise it, or leave tol out"
+            )
+
     def check_degree_memory(self, n: int) -> None:
         """A ``ValueError`` if a run at degree ``n`` would exceed ``max_memory`` (``budget.check_degree_memory``)."""
         check_degree_memory(n, self.problem.n_loads, self.max_memory)
@@ -386,8 +402,17 @@ class ChebyshevSolver(Solver):
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
         if self.path == "moving-wall":  # (chosen in validate)
-            return solve_moving_wall(pr, o, self.zeta_out, self.V_out, self.max_time, self.max_memory)
+            out = solve_moving_wall(pr, o, self.zeta_out, self.V_out, self.max_time, self.max_memory)
+            if o["n_p"] is not None and self._tol_given:  # a fixed degree is not raised: refused over tol
+                est = out.info["error_estimate"]
+                worst = max(float(np.max(est[q])) for q in ("L1", "elastic_area", "plastic_area", "noncontact_area"))
+                self._refuse_fixed_degree(o["n_p"], o["tol"], worst)
+            return out
         tol = o["tol"]
+        if self.path != "magnus" and pr.n_loads >= SHARED_MIN_LOADS and o["n_p"] is None and o["V0_fraction"] is None:
+            out = solve_shared(self, tol)  # loads on one grid share its modes (None: the grid cannot serve them)
+            if out is not None:
+                return out
         doms = []
         for V in self.V_out:  # a far wall per station (a loop, not a comprehension: one frame less below it)
             doms.append(self._domain(tol, float(V)))
@@ -434,13 +459,8 @@ class ChebyshevSolver(Solver):
             est["noncontact_area"] = np.maximum(est["noncontact_area"], est["L1"] + est["plastic_area"])
             worst = max(float(np.max(est[q])) for q in ("L1", "contact_area", "plastic_area", "noncontact_area"))
             if o["n_p"] is not None or worst <= tol:
-                if o["n_p"] is not None and self._tol_given and worst > tol:  # a fixed degree is not raised
-                    from persson_fp.results.invariants import SolverError
-
-                    raise SolverError(
-                        f"chebyshev: n_p = {n} cannot meet tol = {tol:.3g}: the error estimate at that fixed degree "
-                        f"is {worst:.2e}; leave n_p out (the degree then adapts to tol), raise it, or leave tol out"
-                    )
+                if o["n_p"] is not None and self._tol_given:  # a fixed degree is not raised
+                    self._refuse_fixed_degree(n, tol, worst)
                 break
             if best is not None and worst > best and float(np.max(floor)) >= 0.3 * worst:
                 self._unreachable(tol, n, float(np.max(floor)), best, p_max)  # a higher degree raised the error

@@ -208,6 +208,13 @@ class FiniteVolumeSolver(Solver):
         if o["tol"] is not None:
             o["tol"] = check_float(o["tol"], "tol", 1e-15, 1.0, lo_open=False)
         self.validate_start_options()
+        # the engine, chosen once: the general one (persson_fp.solvers.front_fixed.moving_wall, .engine) or the march
+        pr = self.problem
+        self._engine = "front-fixed" if pr.moving_wall or pr.general else "march"
+
+    def memory_options(self) -> dict:
+        """The engine's memory model (no trajectory kept on the front-fixed engine; :data:`MEMORY_MODELS`)."""
+        return {"front_fixed": self._engine == "front-fixed"}
 
     # -- set-up --------------------------------------------------------------------------------
     def _start(self):
@@ -224,7 +231,7 @@ class FiniteVolumeSolver(Solver):
     # -- the run ---------------------------------------------------------------------------------
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
-        if pr.moving_wall or pr.general:  # the general engine (persson_fp.solvers.front_fixed.moving_wall, .engine)
+        if self._engine == "front-fixed":  # (chosen in validate)
             return self._solve_moving_wall()
         scheme = SCHEMES[o["scheme"]]
         coupling = scheme.coupling if o["coupling"] == "auto" else o["coupling"]
