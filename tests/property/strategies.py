@@ -151,3 +151,13 @@ def bad_array() -> st.SearchStrategy:
             ]
         ),
     )
+
+
+def slow_scale(scale: float):
+    """Run a costly property test with ``scale`` times the slow group's example count (put above ``@given``)."""
+
+    def mark(test):
+        test._slow_scale = scale
+        return test
+
+    return mark

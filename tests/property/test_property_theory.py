@@ -17,7 +17,7 @@ from scipy.special import erf
 
 import persson_fp as pf
 
-from .strategies import log_uniform
+from .strategies import log_uniform, slow_scale
 
 areas = st.floats(0.0, 1.0)
 
@@ -147,6 +147,7 @@ def test_property_effective_variance_solves_its_ode(name, gamma, p_bar, v):
         assert tau == pytest.approx(float(f.g(A)) * V, rel=1e-9)
 
 
+@slow_scale(0.5)
 @given(log_uniform(1e-6, 1e6), log_uniform(1e-8, 1e3))
 def test_property_image_solution_mass_load_and_variance(p_bar, r):
     """The image solution is a density of mass A* = erf(p_bar/sqrt(2 tau)) whose mean over the interface is p_bar
