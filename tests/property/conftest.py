@@ -31,6 +31,8 @@ def _depth(request):
     fn = request.function
     assert hasattr(fn, "_hypothesis_internal_use_settings"), "hypothesis moved its settings attribute"
     scale = getattr(fn, "_slow_scale", 1.0)
+    if request.param == "fast" and getattr(fn, "_slow_only", False):
+        pytest.skip("too costly for the default run's sample: in the slow group only")
     if request.param == "fast":
         fn._hypothesis_internal_use_settings = settings(max_examples=FAST_EXAMPLES, derandomize=True, **_COMMON)
     else:

@@ -12,6 +12,7 @@ GapDistribution`` counts for ``pf.GapDistribution``.
 from __future__ import annotations
 
 import ast
+import functools
 import importlib
 import pathlib
 from types import ModuleType
@@ -137,6 +138,7 @@ def scan(path: pathlib.Path) -> tuple[dict[str, list[object]], list[object]]:
     return given_tests, anywhere
 
 
+@functools.lru_cache(maxsize=1)
 def coverage() -> tuple[dict[str, list[str]], dict[str, list[str]]]:
     """Public name -> the @given tests that exercise it, and public constant -> the tests that name it."""
     surface = public_surface()
@@ -154,6 +156,7 @@ def coverage() -> tuple[dict[str, list[str]], dict[str, list[str]]]:
                         given_cov[name].append(test)
         for obj in anywhere:
             for name in by_id.get(id(obj), []):
-                if name in const_cov and str(path) not in const_cov[name]:
-                    const_cov[name].append(str(path.relative_to(TESTS)))
+                rel = str(path.relative_to(TESTS))
+                if name in const_cov and rel not in const_cov[name]:
+                    const_cov[name].append(rel)
     return given_cov, const_cov

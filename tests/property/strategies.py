@@ -153,11 +153,13 @@ def bad_array() -> st.SearchStrategy:
     )
 
 
-def slow_scale(scale: float):
-    """Run a costly property test with ``scale`` times the slow group's example count (put above ``@given``)."""
+def slow_scale(scale: float, slow_only: bool = False):
+    """Run a costly property test with ``scale`` times the slow group's example count (put above ``@given``);
+    ``slow_only``: no sample in the default run."""
 
     def mark(test):
         test._slow_scale = scale
+        test._slow_only = slow_only
         return test
 
     return mark
