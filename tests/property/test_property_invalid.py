@@ -201,3 +201,27 @@ def test_public_constants_hold_what_the_docs_say():
     assert pf.WEIGHTINGS == ("yang-persson", "corrected-area")
     assert {"contact_area", "mean_separation"} <= set(pf.QUANTITIES)
     assert re.fullmatch(r"\d+\.\d+(\.\d+)?([.-]?\w+)*", pf.__version__)
+
+
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda: pf.EffectiveVariance(1.0), "fudge"),  # was AttributeError
+        (lambda: pf.effective_variance([1.0]), "fudge"),  # was TypeError (unhashable)
+        (lambda: pf.adhesion.attractive_stress(1.0, pf.adhesion.Exponential(1e-3, 1e-3)), "gaps"),  # AttributeError
+        (lambda: pf.adhesion.tabor_parameter(1.0, 1.0, 1e-3, 1e-3), "psd"),  # AttributeError
+        (lambda: pf.abel_forward(1.0, [1.0]), "psd"),  # AttributeError
+        (lambda: pf.abel_forward(PSD, 0.0), "q"),  # FloatingPointError / inf
+        (lambda: pf.abel_factor(1e308), "H"),  # NaN
+        (lambda: pf.abel_inverse([1.0, 2.0, 3.0], [1.0, 0.5, 0.2], n_nodes=float("inf")), "n_nodes"),  # OverflowError
+        (lambda: pf.hardness.PowerLaw(1.0, [1.0, 2.0]), "n"),  # TypeError
+        (lambda: pf.hardness.CallableHardness(np.sqrt, 1.0), "derivative"),  # accepted, failed later
+        (lambda: pf.read_sweep_table("/nonexistent/table.csv"), "path"),  # FileNotFoundError
+        (lambda: pf.image_pdf(1.0, float("nan"), 1.0), "p_bar"),  # NaN
+        (lambda: pf.area_from_tau(-1.0, 1.0), "p_bar"),  # a negative area
+        (lambda: pf.variance_closed_form(1.0, float("nan")), "tau"),  # 0.0
+    ],
+)
+def test_regression_bad_inputs_found_by_the_property(call, name):
+    with pytest.raises(ValueError, match=name):
+        call()
