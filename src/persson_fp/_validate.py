@@ -118,5 +118,5 @@ def as_file_path(path, name: str = "path") -> str:
     if os.path.isdir(path):
         raise ValueError(f"{name}: {path!r} is a folder, expected a file")
     if not os.path.exists(path):
-        raise ValueError(f"no such file {path!r}")
+        raise ValueError(f"{name}: no such file {path!r}")
     return path

@@ -50,7 +50,10 @@ def _populated(q_mode, power, edges, tiny):
     """Annuli holding power: (power, power-weighted mean q^2, modes, edges); empty or powerless annuli merged into the
     next (trailing ones dropped: the band ends with the last annulus that has power)."""
     n = edges.size - 1
-    idx = np.clip(np.searchsorted(edges, q_mode, side="right") - 1, 0, n - 1)
+    # the edges start on the lowest mode and step by the lattice step, so lattice radii fall on edges: a mode within
+    # round-off (1e-9 relative) of an edge counts in the annulus above it, as exact arithmetic would place it, and
+    # the table does not depend on the unit of length (it did, by up to a factor 2.8 in C, through round-off)
+    idx = np.clip(np.searchsorted(edges, q_mode * (1.0 + 1e-9), side="right") - 1, 0, n - 1)
     P = np.bincount(idx, weights=power, minlength=n)
     Q2 = np.bincount(idx, weights=power * q_mode**2, minlength=n)
     count = np.bincount(idx, minlength=n)
@@ -151,7 +154,7 @@ def annulus_table(q_mode, power, step, bins_per_decade, q_full=np.inf):
     wide = b / a >= WIDE  # few lattice radii: the exponent carries the annulus' slope power too
     # many modes: the level is their mean C (the lattice count of an annulus differs from its area / cell by a
     # few % at q ~ 10 2 pi / L), times one factor that keeps their total power
-    many = ~wide & (b <= q_full)
+    many = ~wide & (b <= q_full * (1.0 + 1e-9))  # (an edge on the Nyquist circle is inside it, in any unit)
     P = P_bin.copy()
     mean_C = P_bin / (count * step[0] * step[1])
     if np.any(many):

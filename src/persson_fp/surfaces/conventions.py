@@ -114,8 +114,9 @@ def abel_factor(H) -> np.ndarray:
         ``H`` <= -1/2 (the Abel integral diverges there).
     """
     H = as_float_array(H, "H")
-    if np.any(H <= -0.5):
-        raise ValueError(f"H must be > -0.5 for the Abel factor, got {float(np.min(H))!r}")
+    out = (H <= -0.5) | (H > 1e6)
+    if np.any(out):
+        raise ValueError(f"H must be > -0.5 (and <= 1e6) for the Abel factor, got {float(H[out].ravel()[0])!r}")
     return 2.0 * np.sqrt(np.pi) * np.exp(gammaln(H + 1.0) - gammaln(H + 0.5))
 
 
@@ -164,8 +165,12 @@ def abel_inverse(q, C1D, q_eval=None, n_nodes: int = 400) -> np.ndarray:
         raise ValueError(f"q and C1D must be 1-D arrays of the same length >= 2, got {q.shape} and {C1D.shape}")
     if np.any(q <= 0) or np.any(np.diff(q) <= 0) or np.any(C1D <= 0):
         raise ValueError("q must be > 0 and strictly increasing and C1D > 0 for the Abel inversion")
-    if int(n_nodes) < 50:
-        raise ValueError(f"n_nodes must be >= 50, got {n_nodes!r}")
+    if (
+        isinstance(n_nodes, (bool, np.bool_))
+        or not isinstance(n_nodes, (int, np.integer))
+        or not 50 <= n_nodes <= 10**6
+    ):
+        raise ValueError(f"n_nodes must be an integer in [50, 1e6], got {n_nodes!r}")
     qe = q if q_eval is None else as_float_array(q_eval, "q_eval")
     if np.any(qe <= 0):
         raise ValueError("q_eval must be > 0")
@@ -205,7 +210,13 @@ def abel_forward(psd, q) -> np.ndarray:
         The 1-D PSD :math:`C^{1D}(q)` with :math:`\langle h^2\rangle = \frac1\pi\int_0^\infty C^{1D}dq`,
         of the shape of ``q``.
     """
+    from persson_fp.surfaces.psd import PSD
+
+    if not isinstance(psd, PSD):
+        raise ValueError(f"psd must be a persson_fp spectrum (PSD), got {type(psd).__name__} {psd!r}")
     q = as_float_array(q, "q")
+    if np.any(q <= 0):
+        raise ValueError(f"q must be > 0 (rad/length), got {float(q[q <= 0].ravel()[0])!r}")
     x, w = np.polynomial.legendre.leggauss(24)
     kinks = [psd.q_l, psd.q_s] + ([psd.q_r] if hasattr(psd, "q_r") else []) + list(getattr(psd, "q", []))
     kinks = np.unique(np.asarray(kinks, dtype=float))

@@ -247,6 +247,9 @@ def _radial_bins(q_mode, power, dq, q_max, bins_per_decade):
             edges[-1] = q_max
     edges = np.array(edges)
     idx = np.searchsorted(edges, q_mode, side="right") - 1
+    # the top edge is the Nyquist wavenumber, where a mode lies: within round-off (1e-9) it is in the last annulus
+    # (it fell in or out by the round-off of q_max, so that the table depended on the unit of length)
+    idx = np.where((idx == edges.size - 1) & (q_mode <= edges[-1] * (1.0 + 1e-9)), edges.size - 2, idx)
     ok = (idx >= 0) & (idx < edges.size - 1)
     n = edges.size - 1
     P = np.bincount(idx[ok], weights=power[ok], minlength=n)

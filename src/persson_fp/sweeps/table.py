@@ -350,7 +350,9 @@ def read_table(path):
         A CSV without its metadata file (and not an earlier table with the metadata inside).
     """
     pd = _need("pandas", "pandas")
-    path = str(path)
+    from persson_fp._validate import as_file_path
+
+    path = as_file_path(path)  # a ValueError naming path: not a name, a folder, missing (was FileNotFoundError)
     if path.endswith((".parquet", ".pq")):
         return pd.read_parquet(path)
     with open(path, newline="") as fh:

@@ -161,9 +161,10 @@ class Exponential(Interaction):
             plus = np.exp(-c / self.rho + 0.5 * a * a + log_ndtr(r - a))
             minus = np.exp(c / self.rho + 0.5 * a * a + log_ndtr(-r - a))
             g = np.exp(-0.5 * r * r)
-            short = a > r  # erfcx form: both arguments >= 0
-            plus = np.where(short, 0.5 * g * erfcx((a - r) / np.sqrt(2.0)), plus)
-            minus = np.where(short, 0.5 * g * erfcx((a + r) / np.sqrt(2.0)), minus)
+            # erfcx form where its argument is >= 0, for each term on its own (one condition for both gave
+            # 0 * inf = NaN for a mean gap below -rho with a narrow width, where the minus term's argument is < 0)
+            plus = np.where(a > r, 0.5 * g * erfcx((a - r) / np.sqrt(2.0)), plus)
+            minus = np.where(a > -r, 0.5 * g * erfcx((a + r) / np.sqrt(2.0)), minus)
         return self.w / self.rho * (plus + minus)
 
 
@@ -233,7 +234,8 @@ class CallableInteraction(Interaction):
     rho : float, length
         Its range (> 0): the scale the quadrature resolves near u = 0.
     w : float, optional, pressure x length
-        Work of adhesion; default the integral of ``fn`` (adaptive quadrature).
+        Work of adhesion; default the integral of ``fn`` (adaptive quadrature split at 1, 10, 100 and 1e4
+        ``rho``: 1e-10 relative for a smooth law of that range).
     """
 
     name = "user"
@@ -252,7 +254,14 @@ class CallableInteraction(Interaction):
         if w is None:
             from scipy.integrate import quad
 
-            w = quad(lambda u: float(fn(np.array([u]))[0]), 0.0, np.inf, limit=200)[0]
+            # split at multiples of the range: one quad over [0, inf) misses a law of short range (rho = 1e-9 gave
+            # w = 6e-91 instead of 1, or 0 and a refusal)
+            def f(u):
+                return float(fn(np.array([u]))[0])
+
+            cuts = self.rho * np.array([0.0, 1.0, 10.0, 100.0, 1e4])
+            w = sum(quad(f, a, b, epsabs=0.0, epsrel=1e-10, limit=200)[0] for a, b in zip(cuts[:-1], cuts[1:]))
+            w += quad(f, cuts[-1], np.inf, limit=200)[0]
         self.w = as_positive_scalar(w, "w")
         _check_scale(self.w, self.rho)
         self.name = getattr(fn, "__name__", "user")
@@ -289,12 +298,22 @@ def attractive_stress(gaps, interaction: Interaction) -> np.ndarray:
     ndarray, pressure
         :math:`p_{att} \ge 0`, shape ``(n_loads,)``.
     """
+    from persson_fp.theory.gaps import GapDistribution
+
+    if not isinstance(gaps, GapDistribution):
+        raise ValueError(f"gaps must be a GapDistribution (persson_fp.gap_distribution), got {type(gaps).__name__}")
+    if not isinstance(interaction, Interaction):
+        raise ValueError(f"interaction must be an Interaction (persson_fp.adhesion), got {type(interaction).__name__}")
     s0 = float(np.asarray(interaction.sigma(np.array([0.0])))[0])
     cont = np.sum(gaps.weights * interaction.folded_mean(gaps.centres, gaps.widths), axis=1)
     return gaps.atom * s0 + cont
 
 
 def _moments(psd):
+    from persson_fp.surfaces.psd import PSD
+
+    if not isinstance(psd, PSD):
+        raise ValueError(f"psd must be a persson_fp spectrum (PSD), got {type(psd).__name__} {psd!r}")
     h1 = float(psd.rms_slope)
     h2 = 0.5 * float(np.sqrt(2.0 * np.pi * psd.moment(5)))  # rms mean curvature 1/2 <(lap h)^2>^(1/2)
     return h1, h2

@@ -52,6 +52,10 @@ class EffectiveVariance:
     """
 
     def __init__(self, fudge: FudgeFactor):
+        if not isinstance(fudge, FudgeFactor):
+            raise ValueError(
+                f"fudge must be a FudgeFactor (from persson_fp.fudge.resolve), got {type(fudge).__name__} {fudge!r}"
+            )
         self.fudge = fudge
         self.identity = isinstance(fudge, NoFudge)
         if self.identity:
@@ -218,6 +222,10 @@ def effective_variance(fudge: FudgeFactor) -> EffectiveVariance:
     EffectiveVariance
         The map of that model, shared by every caller.
     """
+    if not isinstance(fudge, FudgeFactor):
+        raise ValueError(
+            f"fudge must be a FudgeFactor (from persson_fp.fudge.resolve), got {type(fudge).__name__} {fudge!r}"
+        )
     try:
         return _CACHE[fudge]
     except KeyError:

@@ -84,7 +84,7 @@ class ConstantHardness(Hardness):
     is_constant = True
 
     def __init__(self, sigma: float):
-        self.value = as_positive_scalar(sigma, "hardness")
+        self.value = as_positive_scalar(sigma, "hardness sigma")
         self.name = f"constant({self.value:.6g})"
 
     def sigma(self, zeta) -> np.ndarray:
@@ -111,8 +111,11 @@ class PowerLaw(Hardness):
 
     def __init__(self, sigma_1: float, n: float):
         self.sigma_1 = as_positive_scalar(sigma_1, "sigma_1")
-        n = float(np.asarray(n, dtype=float)) if not isinstance(n, bool) else None
-        if n is None or not np.isfinite(n) or n < 0.0 or n > 2.0:
+        try:
+            n = as_positive_scalar(n, "n (hardness exponent)", allow_zero=True)
+        except ValueError:
+            n = None
+        if n is None or n > 2.0:
             raise ValueError(f"n (hardness exponent) must lie in [0, 2], got {n!r}")
         self.n = n
         self.is_constant = n == 0.0
@@ -136,6 +139,8 @@ class CallableHardness(Hardness):
     def __init__(self, fun: Callable, derivative: Callable | None = None):
         if not callable(fun):
             raise ValueError(f"hardness must be None, a number, a Hardness or a callable sigma_Y(zeta), got {fun!r}")
+        if derivative is not None and not callable(derivative):
+            raise ValueError(f"derivative must be None or a callable dsigma_Y/dzeta, got {derivative!r}")
         self.fun = fun
         self.derivative = derivative
         self.name = getattr(fun, "__name__", "callable")

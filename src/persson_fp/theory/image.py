@@ -19,12 +19,42 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.special import erf, erfc
 
+from persson_fp._validate import as_float_array
+
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 __all__ = ["image_pdf", "area_from_tau", "variance_closed_form", "tail_mass"]
 
 _SQRT2PI = np.sqrt(2.0 * np.pi)
+_P_MAX = 1e150
+"""Largest |p| and p_bar accepted (p_bar^2 must stay representable; pressures are O(E*) in any unit)."""
+_TAU_MAX = 1e300
+"""Largest tau accepted (pressure^2)."""
+
+
+def _checked(p_bar, tau, *, tau_positive: bool):
+    """p_bar (finite, in (0, 1e150]) and tau (finite, in [0, 1e300], or (0, 1e300]) as float arrays, else a
+    ValueError naming the argument."""
+    p_bar = as_float_array(p_bar, "p_bar")
+    out = (p_bar <= 0) | (p_bar > _P_MAX)
+    if np.any(out):
+        raise ValueError(f"p_bar must lie in (0, {_P_MAX:g}] (pressure), got {float(p_bar[out].ravel()[0])!r}")
+    tau = as_float_array(tau, "tau")
+    low = tau <= 0 if tau_positive else tau < 0
+    if np.any(low) or np.any(tau > _TAU_MAX):
+        side = "(0" if tau_positive else "[0"
+        raise ValueError(
+            f"tau must lie in {side}, {_TAU_MAX:g}] (pressure^2), got {float(tau[low | (tau > _TAU_MAX)].ravel()[0])!r}"
+        )
+    return p_bar, tau
+
+
+def _broadcast(p_bar, tau):
+    try:
+        return np.broadcast_arrays(p_bar, tau)
+    except ValueError:
+        raise ValueError(f"p_bar and tau must broadcast together, got shapes {p_bar.shape} and {tau.shape}") from None
 
 
 def image_pdf(p: ArrayLike, p_bar: ArrayLike, tau: ArrayLike) -> np.ndarray:
@@ -49,8 +79,23 @@ def image_pdf(p: ArrayLike, p_bar: ArrayLike, tau: ArrayLike) -> np.ndarray:
     -------
     ndarray, 1/pressure
         P0 of the broadcast shape of the arguments; 0 where p <= 0.
+
+    Raises
+    ------
+    ValueError
+        Naming ``p``, ``p_bar`` or ``tau`` when one is not real and finite, ``p_bar`` or ``tau`` not > 0, a
+        magnitude above 1e150 (``p``, ``p_bar``) or 1e300 (``tau``), or shapes that do not broadcast.
     """
-    p, p_bar, tau = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (p, p_bar, tau)))
+    p_bar, tau = _checked(p_bar, tau, tau_positive=True)
+    p = as_float_array(p, "p")
+    if np.any(np.abs(p) > _P_MAX):
+        raise ValueError(f"p must lie in [-{_P_MAX:g}, {_P_MAX:g}] (pressure)")
+    try:
+        p, p_bar, tau = np.broadcast_arrays(p, p_bar, tau)
+    except ValueError:
+        raise ValueError(
+            f"p, p_bar and tau must broadcast together, got shapes {p.shape}, {p_bar.shape}, {tau.shape}"
+        ) from None
     pos = p > 0
     pp = np.where(pos, p, 0.0)
     with np.errstate(under="ignore"):
@@ -76,8 +121,14 @@ def area_from_tau(p_bar: ArrayLike, tau: ArrayLike) -> np.ndarray:
     -------
     ndarray, dimensionless
         A* in [0, 1] of the broadcast shape; 1 where tau = 0 (full contact at zeta = 1).
+
+    Raises
+    ------
+    ValueError
+        Naming ``p_bar`` or ``tau`` when one is not real and finite, ``p_bar`` not in (0, 1e150] or ``tau``
+        not in [0, 1e300], or the shapes do not broadcast.
     """
-    p_bar, tau = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(tau, dtype=float))
+    p_bar, tau = _broadcast(*_checked(p_bar, tau, tau_positive=False))
     x = np.divide(p_bar, np.sqrt(2.0 * tau), out=np.full(p_bar.shape, np.inf), where=tau > 0)
     return erf(x)
 
@@ -113,8 +164,14 @@ def variance_closed_form(p_bar: ArrayLike, tau: ArrayLike) -> np.ndarray:
     -------
     ndarray, pressure^2
         Var(p) of the broadcast shape; 0 where tau = 0.  The second moment is Var + p_bar^2.
+
+    Raises
+    ------
+    ValueError
+        Naming ``p_bar`` or ``tau`` when one is not real and finite, ``p_bar`` not in (0, 1e150] or ``tau``
+        not in [0, 1e300], or the shapes do not broadcast.
     """
-    p_bar, tau = np.broadcast_arrays(np.asarray(p_bar, dtype=float), np.asarray(tau, dtype=float))
+    p_bar, tau = _broadcast(*_checked(p_bar, tau, tau_positive=False))
     with np.errstate(divide="ignore", under="ignore"):
         x = np.divide(p_bar, np.sqrt(2.0 * tau), out=np.full(p_bar.shape, np.inf), where=tau > 0)
         out = tau * erf(x) - p_bar**2 * erfc(x) + p_bar * np.sqrt(2.0 * tau / np.pi) * np.exp(-x * x)
