@@ -102,7 +102,7 @@ def test_hardness_models():
 @pytest.mark.parametrize(
     "hardness, match",
     [
-        (-1.0, "hardness must be > 0"),
+        (-1.0, "hardness (sigma )?must be > 0"),
         (True, "hardness must be None"),
         ("hard", "hardness must be None"),
         (lambda z: 1.0 / z, "non-decreasing"),
