@@ -243,6 +243,7 @@ def test_calibration_vs_bem_quick(tmp_path):
     assert [r["draws"] for r in cov] == [5, 5] and (tmp_path / "calibration_coverage.csv").exists()
 
 
+@pytest.mark.slow  # the hand peers and the reference run (~10 s)
 def test_general_engine_quick(tmp_path):
     """The general-engine benchmark's quick mode: every method row present, chebyshev within its tol."""
     rows = _module("general_engine").main(["--quick", "--output", str(tmp_path)])

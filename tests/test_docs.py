@@ -17,6 +17,7 @@ ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
 
 
+@pytest.mark.slow  # a full Sphinx build (~30 s): the heavy group
 def test_docs_build_without_warnings(tmp_path):
     for mod in ("sphinx", "numpydoc", "myst_nb", "furo", "sphinx-mathjax-offline"):
         pytest.importorskip(mod)

@@ -70,7 +70,10 @@ def test_script_pairs_with_notebook(script):
     )
 
 
-_HEAVY = {"05_where_methods_fail.ipynb", "13_calibration.ipynb", "14_rubber_friction.ipynb"}  # (14-26 s each)
+_FAST = {"01_pdf_evolution.ipynb"}
+"""The notebook the default run executes (a smoke test of the kernel and the plotting); the others, 6-26 s each,
+run in the heavy group (``-m slow``) that CI runs too."""
+_HEAVY = {p.name for p in NOTEBOOKS} - _FAST
 
 
 @pytest.mark.parametrize(

@@ -88,6 +88,7 @@ def test_import_is_lazy_and_missing_extra_is_named(monkeypatch):
         get_solver("py-pde")
 
 
+@pytest.mark.slow  # two compilations by numba (~11 s)
 def test_compiled_stepper_is_reused_by_an_identical_call():
     """py-pde freezes grid, time map and S into its stepper; the same call again reuses it (no recompile)."""
     a = _solve("YP08")
