@@ -93,10 +93,25 @@ class _Plan:
                 declined, cheb_err = f"; method 'chebyshev' declined: {err}", str(err)
                 if max_time is not None and cheb_budget is not budget:  # fv gets what the capped attempt left
                     budget["max_time"] = max_time - (time.perf_counter() - t_cheb)
+                elif max_time is None and "over its budget" in cheb_err:  # (the march's forecast: fv, slower at
+                    from persson_fp.solvers.chebyshev.solver import MARCH_TIME_BUDGET  # every tol, gets as long)
+
+                    budget["max_time"] = MARCH_TIME_BUDGET
         why = (
             f"no closed form ({self.what}): finite volumes on the front-fixed engine, n cells and n steps from the "
             f"measured error model C/n^2, checked by a half-resolution partner run{declined}"
         )
+        if max_time is None and budget["max_time"] is not None:  # (chebyshev's forecast declined: fv as long)
+            try:
+                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+            except (ValueError, SolverError) as err:
+                if "max_time" not in str(err):
+                    raise
+                raise SolverError(
+                    f"auto: tol = {tol:g} not met: method 'chebyshev' declined ({cheb_err[:300]}), and fv did not "
+                    f"meet it within the same {budget['max_time']:g} s ({err}); ask for a looser tol or pass a "
+                    "larger max_time (seconds)"
+                ) from None
         if max_time is not None and budget["max_time"] != max_time:
             spent = max_time - budget["max_time"]
             try:

@@ -56,7 +56,7 @@ def _errors(sol, exact):
 
 
 @pytest.mark.parametrize(
-    "seed, march", [(s, m) for s in range(4) for m in (None, "radau")] + [(0, "magnus"), (1, "magnus")]
+    "seed, march", [(s, None) for s in range(4)] + [(s, m) for s in range(2) for m in ("radau", "magnus")]
 )
 def test_clock_and_march_against_the_image_solution(seed, march):
     rng = np.random.default_rng(seed)

@@ -74,6 +74,7 @@ _ORDER = np.argsort(np.abs(_LAM.imag))  # the real eigenvalue first, then the pa
 _LAM, _T = _LAM[_ORDER], _T[:, _ORDER]
 _LAM = _LAM[:2]  # (the third is the conjugate of the second, and so are its W and eigenvector)
 _TI = np.linalg.inv(_T)
+_TI_RE, _TI_IM = np.ascontiguousarray(_TI[:2].real), np.ascontiguousarray(_TI[1].imag)
 _AI = np.linalg.inv(A_RK)
 NEWTON_MAX = 12
 """Most simplified-Newton sweeps of one step (slower convergence: the step is retried at a smaller h)."""
@@ -92,7 +93,21 @@ def operators(A_of, Vs):
     return np.stack([A_of(float(v)) for v in Vs])
 
 
-def radau_step(A_of, V, h, y, As=None):
+def factor(J, h):
+    """The LUs of the stage iteration for the frozen operator J (n_loads, m, m) and step h: per load, LAPACK getrf of
+    the real (gamma / h - J) and of the complex ((alpha + i beta) / h - J) (:func:`radau_step`)."""
+    from scipy.linalg.lapack import dgetrf, zgetrf
+
+    m = J.shape[-1]
+    idx = np.arange(m)
+    Mr = -J
+    Mr[:, idx, idx] += _LAM[0].real / h
+    Mc = (-J).astype(complex)
+    Mc[:, idx, idx] += _LAM[1] / h
+    return [(dgetrf(Mr[lo], overwrite_a=True)[:2], zgetrf(Mc[lo], overwrite_a=True)[:2]) for lo in range(J.shape[0])]
+
+
+def radau_step(A_of, V, h, y, As=None, frozen=None):
     r"""One Radau IIA step of dy/dV = A(V) y from V over h.
 
     The stage system is solved by simplified Newton sweeps with the operator frozen at the mean of its stage values
@@ -110,6 +125,9 @@ def radau_step(A_of, V, h, y, As=None):
     y : ndarray, shape (n_loads, m)
     As : ndarray or None, shape (3, n_loads, m, m)
         The operator at the stages V + c_i h, if the caller has it (:func:`operators`).
+    frozen : (ndarray, list) or None
+        (J, :func:`factor` (J, h)): the frozen operator and its LUs, shared by steps of the same h (the two half
+        steps of a doubled step); default the mean of the stage operators, factorised here.
 
     Returns
     -------
@@ -122,19 +140,16 @@ def radau_step(A_of, V, h, y, As=None):
     """
     if As is None:
         As = operators(A_of, V + C * h)
-    from scipy.linalg.lapack import dgetrf, dgetrs, zgetrf, zgetrs
+    from scipy.linalg.lapack import dgetrs, zgetrs
 
     single = y.ndim == 2
     # (n_loads, m, r): r right-hand sides share the operators and their LUs
     y = y[:, :, None] if single else np.swapaxes(y, 1, 2)
-    J = As.mean(axis=0)
+    J, lus = frozen if frozen is not None else (None, None)
+    if J is None:
+        J = As.mean(axis=0)
+        lus = factor(J, h)
     nl, m, r = y.shape
-    idx = np.arange(m)
-    Mr = -J  # the real eigenvalue's gamma / h - J and the complex pair's (alpha + i beta) / h - J, per load
-    Mr[:, idx, idx] += _LAM[0].real / h
-    Mc = (-J).astype(complex)
-    Mc[:, idx, idx] += _LAM[1] / h
-    lus = [(dgetrf(Mr[lo], overwrite_a=True)[:2], zgetrf(Mc[lo], overwrite_a=True)[:2]) for lo in range(nl)]
     Z = (C * h)[:, None, None, None] * (J @ y)[None]  # the first guess: the explicit Euler stages y + c_i h J y
     scale = np.max(np.abs(y), axis=1)  # (n_loads, r)
     scale = np.where(scale > 0, scale, 1.0)
@@ -143,10 +158,11 @@ def radau_step(A_of, V, h, y, As=None):
     dW1 = np.empty((nl, m, r), dtype=complex)
     for _ in range(NEWTON_MAX):
         G = As @ (y[None] + Z) - np.tensordot(_AI / h, Z, 1)
-        R = np.tensordot(_TI[:2], G, 1)
+        R0 = np.tensordot(_TI_RE[0], G, 1)  # (T^-1 G: real arithmetic, the pair's parts apart)
+        R1 = np.tensordot(_TI_RE[1], G, 1) + 1j * np.tensordot(_TI_IM, G, 1)
         for lo, ((lu_r, piv_r), (lu_c, piv_c)) in enumerate(lus):
-            dW0[lo] = dgetrs(lu_r, piv_r, R[0, lo].real)[0]
-            dW1[lo] = zgetrs(lu_c, piv_c, R[1, lo])[0]
+            dW0[lo] = dgetrs(lu_r, piv_r, R0[lo])[0]
+            dW1[lo] = zgetrs(lu_c, piv_c, R1[lo])[0]
         dZ = _T[:, 0].real[:, None, None, None] * dW0 + 2.0 * (_T[:, 1][:, None, None, None] * dW1).real
         Z += dZ
         change = float(np.max(np.max(np.abs(dZ), axis=(0, 2)) / scale))
@@ -222,11 +238,14 @@ def radau_march(
         for Vn in [v for v in nodes if v > V_a * (1.0 + 1e-12)]:
             h = Vn - V
             ops = operators(A_of, np.concatenate([V + 0.5 * C * h, V + 0.5 * h + 0.5 * C * h]))
-            y = radau_step(A_of, V + 0.5 * h, 0.5 * h, radau_step(A_of, V, 0.5 * h, y, ops[:3]), ops[3:])
+            frozen = (ops[2], factor(ops[2], 0.5 * h))
+            y = radau_step(
+                A_of, V + 0.5 * h, 0.5 * h, radau_step(A_of, V, 0.5 * h, y, ops[:3], frozen), ops[3:], frozen
+            )
             V, steps = Vn, steps + 1
         if V < V_b * (1.0 - 1e-13):  # (nodes short of V_b: the rest in one pair of half steps)
             h = V_b - V
-            y = radau_step(A_of, V + 0.5 * h, 0.5 * h, radau_step(A_of, V, 0.5 * h, y))
+            y = radau_step(A_of, V + 0.5 * h, 0.5 * h, radau_step(A_of, V, 0.5 * h, y))  # (its own LUs)
             steps += 1
         return y, np.zeros(y.shape[0]), {"steps": steps, "rejected": 0, "solves": 2 * steps}
     log_span = math.log(V_b / V_a)
@@ -254,9 +273,10 @@ def radau_march(
             h = V_b - V
         try:
             ops = operators(A_of, np.concatenate([V + C * h, V + 0.5 * C * h, V + 0.5 * h + 0.5 * C[:2] * h]))
-            full = radau_step(A_of, V, h, y, ops[:3])
-            half = radau_step(A_of, V, 0.5 * h, np.stack([y, e], axis=1), ops[3:6])
-            two = radau_step(A_of, V + 0.5 * h, 0.5 * h, half, np.concatenate([ops[6:], ops[2:3]]))
+            full = radau_step(A_of, V, h, y, ops[:3], (ops[5], factor(ops[5], h)))
+            frozen = (ops[5], factor(ops[5], 0.5 * h))  # (the half steps share the operator at V + h/2, its LUs)
+            half = radau_step(A_of, V, 0.5 * h, np.stack([y, e], axis=1), ops[3:6], frozen)
+            two = radau_step(A_of, V + 0.5 * h, 0.5 * h, half, np.concatenate([ops[6:], ops[2:3]]), frozen)
         except _NoConvergence:
             rejected += 1
             h_cap = h = 0.5 * h
