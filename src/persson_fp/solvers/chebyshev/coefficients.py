@@ -7,8 +7,8 @@ In the variance-like variable V (dV = V'(zeta) dzeta) the Fokker--Planck equatio
 
 Where b and c do not depend on V (B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta: the homogenised theory, any
 pressure-dependent diffusion of that form) the collocated operator is constant and one exponential propagates it
-exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver marches it with adaptive Magnus
-steps (:mod:`persson_fp.solvers.chebyshev.magnus`). The form is detected by sampling b and c on 33 pressures at 9
+exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver marches it with adaptive Radau IIA
+steps (:mod:`persson_fp.solvers.chebyshev.radau`). The form is detected by sampling b and c on 33 pressures at 9
 magnifications (relative tolerance 1e-9), and confirmed: the separable form by an adaptive quadrature in zeta (int
 B2(p*, zeta) / b(p*) dzeta must be V(zeta_max)), the clock form at 129 magnifications. A third form is exact too: b
 = s(V) b(p, V_max), c = s(V) c(p, V_max) (a zeta-dependent factor common to both, e.g. B2 = b(p) g(zeta) with any
