@@ -222,7 +222,7 @@ class Coefficients:
         bad value and where)."""
         pr = self.problem
         f1, f2 = getattr(pr, "B1_fun", None), getattr(pr, "B2_fun", None)
-        if not pr.general or f2 is None:
+        if f2 is None:  # (no callable B2: the homogenised problem, or B2 = dV/dzeta)
             return self._per_V(p, z)
         try:
             B2 = f2(p, z)
