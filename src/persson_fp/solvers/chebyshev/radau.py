@@ -21,7 +21,7 @@ reported estimate of the march is the *sum* of the accepted steps' local estimat
 because the Fokker--Planck evolution is a contraction in L1 (an error made early is carried, not amplified).
 
 A march forecasts its cost after a few steps (the steps taken per unit ln V so far against the distance left, times
-the time per step so far) and stops at once (:class:`MarchTooLong`) if the forecast exceeds its time budget or its
+the time per step so far) and stops at once (``MarchTooLong``) if the forecast exceeds its time budget or its
 step limit, naming a tol that would fit.
 """
 

@@ -19,7 +19,7 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   march for its estimate of the global error (:mod:`persson_fp.solvers.chebyshev.radau`); the partner runs replay
   its steps.  Every part of the estimate over a third of tol is refined at once, at its measured rate.  The march
   forecasts its cost after a few steps and is refused at once if the solve would exceed its budget (``max_time``;
-  by default :data:`MARCH_TIME_BUDGET` = 10 s on this path), naming the tol that would fit and the time it would
+  by default ``MARCH_TIME_BUDGET`` = 10 s on this path), naming the tol that would fit and the time it would
   take.  ``march="magnus"`` takes the older fourth-order commutator-free exponential steps instead
   (:mod:`persson_fp.solvers.chebyshev.magnus`); ``info["march"]`` counts the steps, rejected steps and solves.
 * ``"moving-wall"`` -- a scale-dependent hardness (no fudge factor): front-fixed in x = p / sigma_Y, the wall value
@@ -102,7 +102,7 @@ class ChebyshevSolver(Solver):
 
     Notes
     -----
-    Time budget: on the ``"radau"`` path a solve without ``max_time`` is held to :data:`MARCH_TIME_BUDGET` = 10 s
+    Time budget: on the ``"radau"`` path a solve without ``max_time`` is held to ``MARCH_TIME_BUDGET`` = 10 s
     (its forecast refuses a longer one within about a second, naming what it would need); other paths use the
     global default ``max_time``.
     """
