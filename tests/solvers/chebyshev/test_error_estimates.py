@@ -213,7 +213,7 @@ def draw(rng):
     return pr, exact, label, np.unique(zeta_out), opts
 
 
-def check_case(rng, n_cells: int = 3000):
+def check_case(rng, n_cells: int = 3000, max_time=None):
     """(worst true error / estimate over stations and quantities, a tol breach, label, path, worst true error / tol
     (NaN without tol)) of one random case."""
     pr, exact, label, zeta_out, opts = draw(rng)
@@ -222,7 +222,7 @@ def check_case(rng, n_cells: int = 3000):
         warnings.simplefilter("ignore", RuntimeWarning)
         warnings.simplefilter("ignore", UserWarning)
         try:
-            sol = pf.solve(pr, method="chebyshev", zeta_out=zeta_out, **opts)
+            sol = pf.solve(pr, method="chebyshev", zeta_out=zeta_out, max_time=max_time, **opts)
         except (ValueError, pf.SolverError) as err:  # refused openly: honest, counted apart
             return None, False, f"{label}: refused ({str(err)[:80]})", "refused", np.nan
     est = sol.info["error_estimate"]
@@ -244,14 +244,14 @@ def check_case(rng, n_cells: int = 3000):
     return worst, over_tol, label, sol.info["path"], (worst_err / opts["tol"] if "tol" in opts else np.nan)
 
 
-def sweep(n, seed):
+def sweep(n, seed, max_time=None):
     rng = np.random.default_rng(seed)
-    return [check_case(rng) for _ in range(n)]
+    return [check_case(rng, max_time=max_time) for _ in range(n)]
 
 
 @pytest.mark.slow
 def test_chebyshev_estimates_are_honest_small_sample():
-    results = sweep(12, seed=7)
+    results = sweep(12, seed=7, max_time=300)  # (not the march's default 10 s: a loaded machine is slow)
     ran = [r for r in results if r[0] is not None]
     assert len(ran) >= 10, [r[2] for r in results if r[0] is None]
     bad = [(r[0], r[2]) for r in ran if r[0] > 2.0 or r[1]]
