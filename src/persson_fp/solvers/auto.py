@@ -9,8 +9,8 @@ r"""``method="auto"`` and ``tol=``: ask for an accuracy, not a method.
   first station is too narrow for the series (a ``ValueError`` from sines), ``"fv"`` with a resolution for ``tol``.
 * **General coefficients, no moving wall** (a constant hardness included): ``"chebyshev"``
   (:mod:`persson_fp.solvers.chebyshev`), which meets ``tol`` by its own estimate -- exact exponentials for
-  B2 = b(p) g(zeta), B1 = c(p) g(zeta), an adaptive exponential march in V otherwise; where it declines (e.g.
-  its march would need more than its step limit) the problem falls through:
+  B2 = b(p) g(zeta), B1 = c(p) g(zeta), an adaptive Radau IIA march in V otherwise; where it declines (e.g.
+  its march is forecast over its time budget) the problem falls through:
 * **A moving wall without a fudge factor, tol < 3e-7** (``_CHEB_WALL_TOL``): ``"chebyshev"`` on its front-fixed
   Magnus march (:mod:`persson_fp.solvers.chebyshev.wall`), at most ``_CHEB_WALL_TIME`` seconds; where it declines or
   runs out of time, ``"fv"`` as below (looser tols go to fv directly: there it is the faster).
@@ -93,10 +93,25 @@ class _Plan:
                 declined, cheb_err = f"; method 'chebyshev' declined: {err}", str(err)
                 if max_time is not None and cheb_budget is not budget:  # fv gets what the capped attempt left
                     budget["max_time"] = max_time - (time.perf_counter() - t_cheb)
+                elif max_time is None and "over its budget" in cheb_err:  # (the march's forecast: fv, slower at
+                    from persson_fp.solvers.chebyshev.solver import MARCH_TIME_BUDGET  # every tol, gets as long)
+
+                    budget["max_time"] = MARCH_TIME_BUDGET
         why = (
             f"no closed form ({self.what}): finite volumes on the front-fixed engine, n cells and n steps from the "
             f"measured error model C/n^2, checked by a half-resolution partner run{declined}"
         )
+        if max_time is None and budget["max_time"] is not None:  # (chebyshev's forecast declined: fv as long)
+            try:
+                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+            except (ValueError, SolverError) as err:
+                if "max_time" not in str(err):
+                    raise
+                raise SolverError(
+                    f"auto: tol = {tol:g} not met: method 'chebyshev' declined ({cheb_err[:300]}), and fv did not "
+                    f"meet it within the same {budget['max_time']:g} s ({err}); ask for a looser tol or pass a "
+                    "larger max_time (seconds)"
+                ) from None
         if max_time is not None and budget["max_time"] != max_time:
             spent = max_time - budget["max_time"]
             try:
@@ -349,8 +364,8 @@ _CHEB_PATHS = {
     "exponential march in V",
     **{
         path: "general coefficients (path {path!r}): Chebyshev collocation in p, exact exponentials or an adaptive "
-        "exponential march in V"
-        for path in ("exponential", "clock", "magnus")
+        "march in V (Radau IIA; or exponential steps)"
+        for path in ("exponential", "clock", "radau", "magnus")
     },
 }
 """auto's words for each path of ``"chebyshev"`` (``sol.info["path"]``)."""
@@ -358,7 +373,7 @@ _CHEB_PATHS = {
 
 def _solve_chebyshev(problem, zeta_out, tol, budget):
     """General coefficients without a moving wall: method "chebyshev" (spectral in p; exact in V for b(p) g(zeta),
-    an adaptive exponential march otherwise; its own loop meets ``tol`` -- 5-25 ms for 1e-4 ... 1e-10 on the
+    an adaptive Radau IIA march otherwise; its own loop meets ``tol`` -- 5-25 ms for 1e-4 ... 1e-10 on the
     reference problem in ``benchmarks/results/general_engine.md``, where fv needs seconds for 1e-6; the
     zeta-dependent and hardness cases in ``benchmarks/results/general_engine_wide.md``)."""
     t0 = time.perf_counter()
@@ -368,7 +383,7 @@ def _solve_chebyshev(problem, zeta_out, tol, budget):
     sol.info["auto"] = {
         "method": "chebyshev",
         "why": f"{what}, degree, start and march refined until the estimate (3/4-degree and 4 V0 partners, the "
-        "march's companion) meets tol",
+        "march's own estimate) meets tol",
         "tol": tol,
         "L1": L1,
         "area_error": area,

@@ -7,8 +7,8 @@ In the variance-like variable V (dV = V'(zeta) dzeta) the Fokker--Planck equatio
 
 Where b and c do not depend on V (B2 = b(p) dV/dzeta, B1 = c(p) dV/dzeta: the homogenised theory, any
 pressure-dependent diffusion of that form) the collocated operator is constant and one exponential propagates it
-exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver marches it with adaptive Magnus
-steps (:mod:`persson_fp.solvers.chebyshev.magnus`). The form is found in one pass of sampling b and c on 33
+exactly; otherwise (a zeta-dependent b(p, zeta), a drift c(p, zeta)) the solver marches it with adaptive Radau IIA
+steps (:mod:`persson_fp.solvers.chebyshev.radau`). The form is found in one pass of sampling b and c on 33
 pressures (relative tolerance 1e-9): at 257 log-spaced magnifications in one call of each coefficient where it
 broadcasts over an array of zeta (its rows checked against calls with a scalar zeta), else at 33 magnifications, one
 call each; the clock form is confirmed at 129 magnifications. A third form is exact too: b
@@ -270,6 +270,41 @@ class Coefficients:
             )
         c, b = self._per_V(p, z)
         return b, (c if self.drift else None)
+
+    def at_many(self, p, Vs):
+        """[(b, c or None)] per unit V at pressures ``p`` for each variance of ``Vs`` (one inversion zeta(V) for
+        all of them; :meth:`at` for one)."""
+        if self.separable:
+            return [self.at(p)] * len(Vs)
+        pr, out = self.problem, []
+        for z in zeta_of(pr, Vs):
+            z = float(z)
+            if not float(pr.V_kernels.dV_dzeta(z)) > 0:
+                return [self.at(p, float(V)) for V in Vs]  # (raises naming zeta)
+            c, b = self._fast_per_V(p, z)
+            out.append((b, c if self.drift else None))
+        return out
+
+    def _fast_per_V(self, p, z):
+        """:meth:`_per_V` for the march's inner loop: the user's callables called directly where both return finite
+        float arrays of the shape of ``p`` (B2 >= 0), the checked ``problem.coefficients`` otherwise (which names a
+        bad value and where)."""
+        pr = self.problem
+        f1, f2 = getattr(pr, "B1_fun", None), getattr(pr, "B2_fun", None)
+        if f2 is None:  # (no callable B2: the homogenised problem, or B2 = dV/dzeta)
+            return self._per_V(p, z)
+        try:
+            B2 = f2(p, z)
+            B1 = None if f1 is None else f1(p, z)
+        except Exception:
+            return self._per_V(p, z)
+        for v in (B2,) if B1 is None else (B2, B1):
+            if not (type(v) is np.ndarray and v.dtype == np.float64 and v.shape == p.shape):
+                return self._per_V(p, z)
+        if not (np.isfinite(B2.sum()) and B2.min() >= 0.0 and (B1 is None or np.isfinite(B1.sum()))):
+            return self._per_V(p, z)
+        g = float(pr.V_kernels.dV_dzeta(z))
+        return (None if B1 is None else B1 / g), B2 / g
 
     def envelope(self, p):
         """(b_max, c_max): the largest b and outward drift c / sqrt(b) over the probe magnifications, at ``p``."""

@@ -13,10 +13,15 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   any pressure-dependent diffusion of that form): one matrix exponential per output station, exact in V.
 * ``"clock"`` -- b and c change with V by a common factor s(V) only (B2 = b(p) g(zeta), B1 = c(p) g(zeta), any
   g): the separable form in the clock tau = int s dV (quadrature), one exponential over its increment, exact.
-* ``"magnus"`` -- anything else (a zeta-dependent b(p, zeta), a drift c(p, zeta) that does not scale with it):
-  adaptive fourth-order commutator-free exponential (Magnus-type) steps in V, step doubling for the step size and
-  a companion march at the doubled steps for the estimate (:mod:`persson_fp.solvers.chebyshev.magnus`), tightened
-  when it dominates the estimate; ``info["march"]`` counts the steps, rejected steps and exponentials.
+* ``"radau"`` -- anything else (a zeta-dependent b(p, zeta), a drift c(p, zeta) that does not scale with it):
+  adaptive Radau IIA steps in V (order 5, L-stable; one real and one complex LU of the small dense operator a step,
+  no matrix exponential), step doubling for the local error, whose signed estimates are propagated through the
+  march for its estimate of the global error (:mod:`persson_fp.solvers.chebyshev.radau`); the partner runs replay
+  its steps.  Every part of the estimate over a third of tol is refined at once, at its measured rate.  The march
+  forecasts its cost after a few steps and is refused at once if the solve would exceed its budget (``max_time``;
+  by default ``MARCH_TIME_BUDGET`` = 10 s on this path), naming the tol that would fit and the time it would
+  take.  ``march="magnus"`` takes the older fourth-order commutator-free exponential steps instead
+  (:mod:`persson_fp.solvers.chebyshev.magnus`); ``info["march"]`` counts the steps, rejected steps and solves.
 * On the first two paths the loads share one plain Chebyshev grid and the modes of its operator (one
   eigendecomposition of the adjoint for every load and station; :mod:`persson_fp.solvers.chebyshev.shared`,
   ``info["loads"]``), with no start at V0, where that grid's degree stays within reach; else the per-load grids below.
@@ -24,7 +29,7 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   beta A_pl lifted, the same kind of march (:mod:`persson_fp.solvers.chebyshev.wall`, which has its own estimate).
 
 Every station starts afresh from the small-time expansion at V0 = V0_fraction x V (with the coefficients at V0/2
-on the Magnus path, the midpoint of [0, V0]; images across both walls).  With a hardness, what the yield wall
+on a march path, the midpoint of [0, V0]; images across both walls).  With a hardness, what the yield wall
 absorbed before V0 (the start's image across it: all of the load for a p_bar at sigma_Y) is part of A_pl.
 
 Error estimate (``info["error_estimate"]``, per station and load; an area's is never below the L1 estimate,
@@ -34,13 +39,13 @@ wall (not with a hardness: there it is A_pl), a round-off floor eps ||L dV||_1 (
 (``collocation.roundoff_floor``: the dense exponential's backward error on the
 clustered grid, whose closest nodes make ||L|| ~ n^4 / dp_min^2; measured 0.004-0.31 of eps ||L dV||_1 at
 n = 100-400, 1.6e-9 to 4e-8 at n = 400, where the partners alone had fallen 1.0-1.6x below the true error) and, on
-the Magnus path, the march's own estimate (the difference from its companion at doubled steps).  With ``tol`` the
+the march paths, the march's own estimate.  With ``tol`` the
 degree is raised, V0 lowered or the march tightened -- whichever part dominates -- until the estimate meets it.  A
 tol below the floor is refused before any run (the floor is computed from the operators alone), and again before a
 run whose floor would exceed tol or once a higher degree raised an estimate the floor dominates: a
 :class:`~persson_fp.SolverError` naming the best reachable accuracy (tol = 1e-12 in ~0.1 s; it took seconds up
 to degree 400 before).  A march forecast to exceed its step limit is refused within ~1 s
-(``magnus.MarchTooLong``, naming the tol that fits).  Negative ripples of the
+(``radau.MarchTooLong``, naming the tol that fits).  Negative ripples of the
 polynomial below 1e-6 of the peak (in the tails and next to the walls, within the estimate) are set to 0 in P0;
 A*, A_pl and the load are the quadratures and wall fluxes of the polynomial itself.
 """
@@ -53,11 +58,12 @@ import time
 import numpy as np
 from scipy.special import ndtr
 
-from persson_fp.solvers.base import Solver, SolverOutput, check_float, check_int
+from persson_fp.solvers.base import TIME_BUDGET, Solver, SolverOutput, check_float, check_int
 from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.coefficients import Coefficients
 from persson_fp.solvers.chebyshev.magnus import magnus_march
+from persson_fp.solvers.chebyshev.radau import MarchTooLong, radau_march
 from persson_fp.solvers.chebyshev.shared import solve_shared
 from persson_fp.solvers.chebyshev.wall import check_wall_problem, solve_moving_wall
 
@@ -66,9 +72,14 @@ __all__ = ["ChebyshevSolver"]
 N_MAX = 400
 """Largest polynomial degree the adaptive loop reaches (a dense 400 x 400 exponential: ~50 ms)."""
 TIME_SHARE = 1.0
+"""The march's first tolerance, as a share of ``tol`` (lowered 4x when the march dominates the estimate)."""
+MARCHES = ("radau", "magnus")
+"""The marches of V-dependent operators: Radau IIA (the default, :mod:`.radau`), exponential steps (:mod:`.magnus`)."""
+MARCH_TIME_BUDGET = 10.0
+"""Seconds a ``"radau"`` solve may take when ``max_time`` is not passed (its forecast refuses a longer one)."""
 SHARED_MIN_LOADS = 1
+"""Loads from which the exact paths put every load on one shared grid (:mod:`.shared`); 1: always, where it can."""
 _GL96 = np.polynomial.legendre.leggauss(96)
-"""The Magnus march's first tolerance, as a share of ``tol`` (lowered 4x when the march dominates the estimate)."""
 
 
 class ChebyshevSolver(Solver):
@@ -80,9 +91,8 @@ class ChebyshevSolver(Solver):
         Asked accuracy: the estimated L1 error of P0 and the error of every area at every station (as for ``tol``
         of :func:`persson_fp.solve`); degree, start and march are refined until the estimate meets it
         (:class:`~persson_fp.SolverError` if it cannot, at degree ``N_MAX``).  None: 1e-8 where the exponentials
-        are exact and on a moving wall, 1e-6 on the ``"magnus"`` march of a non-separable coefficient, whose cost
-        grows ~5-8x a decade of tol (``benchmarks/results/general_engine_wide.md``: 1e-4 / 1e-5 / 1e-6 in 0.10 /
-        0.73 / 4.0 s on ``B2 = V'(1 + 0.2 (p/p_bar) ln zeta)``).
+        are exact and on a moving wall, 1e-6 on the march of a non-separable coefficient
+        (``benchmarks/results/general_nonseparable.md`` for its cost against hand-written Crank--Nicolsons).
     n_p : int or None
         A fixed polynomial degree in [8, 1000] (no adaptation; the estimate is still reported).  With an explicit
         ``tol`` as well, a run whose estimate exceeds it is a :class:`~persson_fp.SolverError` (on a moving wall
@@ -92,15 +102,22 @@ class ChebyshevSolver(Solver):
     k_domain : float or None
         Far wall at k_domain unit-diffusion widths sqrt(V_max) beyond the largest load (in the Lamperti
         distance int dp / sqrt(b)); default from ``tol`` (8 to 12).  Not used with a hardness (the wall is sigma_Y).
-    march : None or "magnus"
-        "magnus" forces the adaptive march even where an exact exponential applies (to check it against one).
+    march : None, "radau" or "magnus"
+        Force that adaptive march even where an exact exponential applies (to check it against one); "magnus" also
+        replaces the Radau march of a non-separable problem by exponential steps.
+
+    Notes
+    -----
+    Time budget: on the ``"radau"`` path a solve without ``max_time`` is held to ``MARCH_TIME_BUDGET`` = 10 s
+    (its forecast refuses a longer one within about a second, naming what it would need); other paths use the
+    global default ``max_time``.
     """
 
     name = "chebyshev"
     SUPPORTS = frozenset({"general", "hardness", "moving_wall"})
     SUPPORT_NOTES = {f: "without a fudge factor" for f in ("hardness", "moving_wall")}
     OPTIONS = {"tol": None, "n_p": None, "V0_fraction": None, "k_domain": None, "march": None}
-    DEFAULT_TOL, MARCH_DEFAULT_TOL = 1e-8, 1e-6  # (the march's cost grows ~5-8x a decade of tol)
+    DEFAULT_TOL, MARCH_DEFAULT_TOL = 1e-8, {"radau": 1e-6, "magnus": 1e-6}
 
     def validate(self) -> None:
         o, pr = self.opts, self.problem
@@ -127,11 +144,11 @@ class ChebyshevSolver(Solver):
             )
         self._sigma = pr.upper_wall.strip_sigma()  # (the fixed yield wall's sigma_Y; None without one)
         self._cf = cf = Coefficients(self.problem)
-        if o["march"] not in (None, "magnus"):
-            raise ValueError(f"march must be None (choose) or 'magnus' (force the adaptive march), got {o['march']!r}")
-        self.path = "magnus" if o["march"] else ("exponential" if cf.separable else "clock" if cf.clock else "magnus")
-        if self.path == "magnus" and not tol_given:
-            o["tol"] = self.MARCH_DEFAULT_TOL
+        if o["march"] not in (None, *MARCHES):
+            raise ValueError(f"march must be None (choose), 'radau' or 'magnus' (force that march), got {o['march']!r}")
+        self.path = o["march"] or ("exponential" if cf.separable else "clock" if cf.clock else "radau")
+        if self.path in MARCHES and not tol_given:
+            o["tol"] = self.MARCH_DEFAULT_TOL[self.path]
 
     # -- the solve ------------------------------------------------------------------------------------
     def _domain(self, tol, V):
@@ -231,7 +248,7 @@ class ChebyshevSolver(Solver):
                     f"{float(np.min(mass_ref)):.3g} where about {float(np.min(m_img)):.3g} is due: the drift per unit "
                     "V is too strong across the start's width, or overflows); use method='fv' or 'mol'"
                 )
-            if path != "magnus":
+            if path not in MARCHES:
                 b_n, c_n = cf.at(grid.p)
                 L = collocation.generator(grid, b_n, c_n)
                 span = float(V) - V0 if path == "exponential" else cf.tau(V0, float(V))
@@ -246,12 +263,25 @@ class ChebyshevSolver(Solver):
                     b_n, c_n = cf.at(grid.p, Vq)
                     return collocation.with_wall_rows(grid, collocation.generator(grid, b_n, c_n), b_n, c_n)
 
+                def many(Vs, grid=grid):  # (the Radau march's stages: one inversion zeta(V) for all)
+                    return np.stack(
+                        [collocation.with_wall_rows(grid, collocation.generator(grid, b, c), b, c)
+                         for b, c in cf.at_many(grid.p, Vs)]
+                    )  # fmt: skip
+
+                A_of.many = many
+
                 def norm(d, w=grid.w[:, 1:-1], m=m):
                     return np.sum(np.abs(d[:, :m]) * w, axis=-1) + np.abs(d[:, m]) + np.abs(d[:, m + 1])
 
                 y0 = np.concatenate([P[:, 1:-1], np.zeros((pb.size, 3))], axis=1)
                 try:
-                    y, t_err[k], st = magnus_march(A_of, y0, V0, float(V), tol_t, norm, floor, deadline=self._deadline)
+                    if path == "radau":  # (the general march and its forecast: chebyshev/radau.py)
+                        y, t_err[k], st = self._radau(k, A_of, y0, V0, float(V), tol_t, norm, floor, n)
+                    else:
+                        y, t_err[k], st = magnus_march(
+                            A_of, y0, V0, float(V), tol_t, norm, floor, deadline=self._deadline
+                        )
                 except TimeoutError as err:
                     self._out_of_time(str(err))
                 except RuntimeError as err:
@@ -259,9 +289,11 @@ class ChebyshevSolver(Solver):
 
                     reach = getattr(err, "reachable", None)  # (the march's tol that fits in its steps)
                     hint = "" if reach is None else f" to about {reach * self.opts['tol'] / tol_t:.1e}"
-                    raise SolverError(f"chebyshev: {err}; loosen tol{hint} or use method='fv'") from None
-                for key in stats:
-                    stats[key] += st[key]
+                    raise SolverError(
+                        f"chebyshev: {err} at degree {n}; loosen tol{hint}, pass a larger max_time or use method='fv'"
+                    ) from None
+                for key in st:
+                    stats[key] = stats.get(key, 0) + st[key]
                 roundoff[k] = collocation.roundoff_floor(
                     np.maximum(np.abs(A_of(V0)), np.abs(A_of(float(V)))), V - V0, n
                 )
@@ -305,14 +337,17 @@ class ChebyshevSolver(Solver):
 
     def _three_runs(self, n, frac, p_max, tol_t):
         """The run and its two partners (3/4 degree, start at 4 V0); ``_stats`` of the run, ``_all`` of the three."""
+        self._replay, self._nodes = None, {}
         main = (*self._run(n, frac, p_max, tol_t), self._far)
+        self._replay = self._nodes  # (the partners replay the main run's Radau steps)
         far, balance, t_err, stats, law = self._far, self._balance, self._time_err, self._stats, self._law
         unresolved, roundoff = self._unresolved, self._roundoff
         all_stats = dict(stats)
         grid_part = (*self._run(max(8, int(round(0.75 * n))), frac, p_max, tol_t), self._far)
-        all_stats = {key: all_stats[key] + self._stats[key] for key in all_stats}
+        all_stats = {key: all_stats[key] + self._stats.get(key, 0) for key in all_stats}
         start_part = (*self._run(n, 4.0 * frac, p_max, tol_t), self._far)
-        self._all = {key: all_stats[key] + self._stats[key] for key in all_stats}
+        self._replay = None
+        self._all = {key: all_stats[key] + self._stats.get(key, 0) for key in all_stats}
         self._law_spread = np.abs(law - self._law)
         self._far, self._balance, self._time_err, self._stats, self._law = far, balance, t_err, stats, law
         self._unresolved, self._roundoff = unresolved, roundoff
@@ -347,7 +382,7 @@ class ChebyshevSolver(Solver):
             V0, _, _, b_at, grid = self._start_grid(n, frac, float(p_max[k]), float(V))
             if np.any(b_at <= 0):
                 return worst  # (the run names it)
-            if self.path != "magnus":
+            if self.path not in MARCHES:
                 span = float(V) - V0 if self.path == "exponential" else cf.tau(V0, float(V))
                 L = collocation.generator(grid, *cf.at(grid.p))
             else:
@@ -397,7 +432,58 @@ class ChebyshevSolver(Solver):
         check_degree_memory(n, self.problem.n_loads, self.max_memory)
 
     def _out_of_time(self, where: str):
-        out_of_time(self.max_time, where)
+        out_of_time(getattr(self, "_budget", self.max_time), where)
+
+    def _refine(self, n, frac, tol_t, tol, grid, start, time_part):
+        """The next (degree, start fraction, march tol) of the Radau path: every part of the estimate over its share
+        of tol (a third each) is refined at once, by the rate it was measured to fall at -- the start's error as
+        V0^2 (the fraction cut by sqrt(share / part), 4x to 16x), the degree's geometrically (the rate between the
+        last two degrees, else 1.3x the degree, at most 2x), the march's as its tol -- instead of one part a try."""
+        share = tol / 3.0
+        prev = getattr(self, "_grid_seen", None)
+        self._grid_seen = (n, grid)
+        n_next = n
+        if grid > share:
+            rate = math.log(prev[1] / grid) / (n - prev[0]) if prev and prev[1] > grid and n > prev[0] else 0.0
+            need = n + math.log(grid / share) / rate if rate > 0 else 1.3 * n
+            n_next = int(math.ceil(min(max(need, 1.15 * n), 2.0 * n)))
+        if start > share and frac > 1e-6:
+            frac *= float(np.clip(math.sqrt(share / start), 1.0 / 16.0, 0.25))
+            n_next = max(n_next, int(math.ceil(1.15 * n)))  # (a narrower start needs a few more nodes)
+        if time_part > share and tol_t > 1e-3 * tol:
+            tol_t *= float(np.clip(share / time_part, 1.0 / 16.0, 0.25))
+        if n_next == n and not (start > share or time_part > share):
+            n_next = int(math.ceil(1.3 * n))  # (no part over its share but the sum over tol: the largest is the grid's)
+        return n_next, frac, tol_t
+
+    def _radau(self, k, A_of, y0, V0, V, tol_t, norm, floor, n):
+        """The Radau march of station k (:func:`radau.radau_march`): a partner run replays the main run's steps;
+        the main run's march is held to its share of the time left -- the stations still to go (each about as
+        long: the same span ln(1 / V0_fraction) in ln V) and the two partners' replays (2 of the 3 solves of a
+        step each) -- and refused at once if forecast over it."""
+        if self._replay is not None:
+            return radau_march(A_of, y0, V0, V, tol_t, norm, floor, deadline=self._deadline, nodes=self._replay[k])
+        record: list = []
+        runs = (self.V_out.size - k) * (1.0 + 4.0 / 3.0)  # (this march's cost is shared by ~this many)
+        share = (self._deadline - time.perf_counter()) / runs
+        try:
+            out = radau_march(
+                A_of, y0, V0, V, tol_t, norm, floor, deadline=self._deadline, record=record, time_budget=share
+            )
+        except MarchTooLong as err:
+            if not math.isfinite(err.needed):
+                raise
+            given = (
+                "max_time" if self._budget == self.max_time else f"the default budget of this path, {self._budget:g} s"
+            )
+            raise MarchTooLong(
+                f"{err}: the solve at tol = {self.opts['tol']:.3g} would take about {err.needed * runs:.3g} s more, "
+                f"over its budget ({given}: {self._budget:.3g} s in all)",
+                err.reachable,
+                err.needed,
+            ) from None
+        self._nodes[k] = record
+        return out
 
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
@@ -409,7 +495,8 @@ class ChebyshevSolver(Solver):
                 self._refuse_fixed_degree(o["n_p"], o["tol"], worst)
             return out
         tol = o["tol"]
-        if self.path != "magnus" and pr.n_loads >= SHARED_MIN_LOADS and o["n_p"] is None and o["V0_fraction"] is None:
+        shareable = self.path not in MARCHES and o["n_p"] is None and o["V0_fraction"] is None
+        if shareable and pr.n_loads >= SHARED_MIN_LOADS:
             out = solve_shared(self, tol)  # loads on one grid share its modes (None: the grid cannot serve them)
             if out is not None:
                 return out
@@ -418,11 +505,17 @@ class ChebyshevSolver(Solver):
             doms.append(self._domain(tol, float(V)))
         p_max, k = np.array([d[0] for d in doms]), doms[0][1]
         n, frac = self._start_of(tol)
+        if self.path == "radau":  # (a march costs more than a degree: start where the loop usually ends)
+            n = min(int(math.ceil(1.3 * n)), N_MAX)
         n = o["n_p"] or n
         tol_t = TIME_SHARE * tol
         runs, hard = 0, self._sigma is not None
         total = {"steps": 0, "rejected": 0, "expm": 0}
-        self._deadline = time.perf_counter() + self.max_time
+        self._budget = self.max_time  # (the general march's default budget: MARCH_TIME_BUDGET)
+        if self.path == "radau" and self.max_time == TIME_BUDGET:
+            self._budget = MARCH_TIME_BUDGET
+        self._deadline = time.perf_counter() + self._budget
+        self._grid_seen = None
         best = None  # the smallest worst estimate so far (tol runs)
         if o["n_p"] is None and (f0 := self._floor_at(n, frac, p_max)) > tol:  # refused before any run
             self._unreachable(tol, n, f0, None, p_max)
@@ -433,8 +526,8 @@ class ChebyshevSolver(Solver):
             main, grid_part, start_part = self._three_runs(n, frac, p_max, tol_t)
             runs += 3
             far, balance, t_err = self._far, self._balance, self._time_err
-            for key in total:
-                total[key] += self._all[key]
+            for key in self._all:
+                total[key] = total.get(key, 0) + self._all[key]
             L1_g, dA_g, dF_g, dP_g, dN_g = self._compare(main, grid_part)
             L1_s, dA_s, dF_s, dP_s, dN_s = self._compare(main, start_part)
             A, F, A_pl = self._stats_of(*main)
@@ -469,7 +562,9 @@ class ChebyshevSolver(Solver):
             start_worst = max(float(np.max(v)) for v in (L1_s, dA_s, dP_s, dN_s)) / 4.0
             time_worst = float(np.max(t_err))
             grid_worst = max(grid_worst, float(np.max(self._unresolved)))  # more nodes resolve the start
-            if time_worst > max(grid_worst, start_worst) and tol_t > 1e-3 * tol:
+            if self.path == "radau":  # (each try is a march: refine every part that is over, by its measured rate)
+                n, frac, tol_t = self._refine(n, frac, tol_t, tol, grid_worst, start_worst, time_worst)
+            elif time_worst > max(grid_worst, start_worst) and tol_t > 1e-3 * tol:
                 tol_t /= 4.0
             elif start_worst > grid_worst and frac > 1e-6:
                 frac /= 4.0
@@ -506,7 +601,8 @@ class ChebyshevSolver(Solver):
                 "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + 2 x far-wall mass "
                 "+ max(4 eps n^2, eps ||L dV||_1 (n/400)^2) "
                 "+ the start's quadrature error on the grid"
-                + (" + |march - companion march at double steps|" if self.path == "magnus" else ""),
+                + (" + |march - companion march at double steps|" if self.path == "magnus" else "")
+                + (" + the Radau march's summed local estimates (step doubling)" if self.path == "radau" else ""),
                 "parts": {"time": t_err, "roundoff": floor},
             },
             "far_wall_mass": np.zeros_like(far) if hard else far,
@@ -516,7 +612,7 @@ class ChebyshevSolver(Solver):
             "load_law_tolerance": est["load"] * pr.p_bar + self._law_spread,
             "mass_balance_residual": float(np.max(np.abs(balance))),
         }
-        if self.path == "magnus":
+        if self.path in MARCHES:
             info["march"] = {**self._stats, "tol": tol_t, "all_runs": total}
         Pout, p, w, extra = self._output(grids, P, p_max, n)
         info["grid"].update(extra)
