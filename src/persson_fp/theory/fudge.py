@@ -40,6 +40,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import erfinv
 
+from persson_fp._validate import as_nonnegative_array, check_in_range
+
 __all__ = [
     "GAMMA_YP08",
     "GAMMA_WM17",
@@ -162,10 +164,17 @@ class NoFudge(FudgeFactor):
     name: str = "none"
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        return np.ones_like(np.asarray(A, dtype=float))
+        return np.ones_like(_as_area(A))
 
     def dS_dA(self, A: ArrayLike) -> np.ndarray:
         return np.zeros_like(np.asarray(A, dtype=float))
+
+
+def _as_area(A) -> np.ndarray:
+    """``A`` as a float array checked to lie in [0, 1] (the relative contact area), else a ``ValueError``."""
+    if type(A) is np.ndarray and A.dtype == np.float64 and (A.size == 0 or (A.min() >= 0.0 and A.max() <= 1.0)):
+        return A  # the common case (NaN fails the comparisons): nothing to convert
+    return check_in_range(A, "A (relative contact area)", 0.0, 1.0)
 
 
 def _check_gamma(gamma, name, lo, hi):
@@ -199,7 +208,7 @@ class YangPersson(FudgeFactor):
         object.__setattr__(self, "gamma", _check_gamma(self.gamma, "YP08", 0.0, 1.0))
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        A = np.asarray(A, dtype=float)
+        A = _as_area(A)
         return self.gamma + (1.0 - self.gamma) * A * A
 
     def dS_dA(self, A: ArrayLike) -> np.ndarray:
@@ -226,7 +235,7 @@ class WangMuser(FudgeFactor):
         self.check()
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        A2 = np.asarray(A, dtype=float) ** 2
+        A2 = _as_area(A) ** 2
         return self.gamma - (2.0 / 9.0) * A2 + (11.0 / 9.0 - self.gamma) * A2 * A2
 
     def dS_dA(self, A: ArrayLike) -> np.ndarray:
@@ -278,7 +287,7 @@ class Xu24(FudgeFactor):
         return self.gamma + (1.0 - self.gamma) * np.asarray(A, dtype=float)
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        A = np.asarray(A, dtype=float)
+        A = _as_area(A)
         inside = A < 1.0
         with np.errstate(all="ignore"):
             x = erfinv(np.where(inside, A, 0.0))
@@ -303,7 +312,8 @@ class Xu24(FudgeFactor):
         """
         from scipy.special import erf
 
-        p_bar, V = np.broadcast_arrays(np.asarray(p_bar, float), np.asarray(V, float))
+        p_bar = as_nonnegative_array(p_bar, "p_bar", allow_zero=False)
+        p_bar, V = np.broadcast_arrays(p_bar, as_nonnegative_array(V, "V"))
         x0 = np.divide(p_bar, np.sqrt(2.0 * V), out=np.full(p_bar.shape, np.inf), where=V > 0)
         x0 = np.minimum(x0, 40.0)  # erf(40 / sqrt(g)) == 1 exactly; keeps exp(-x^2) x finite
         lo = np.zeros(p_bar.shape)
@@ -348,7 +358,7 @@ class CallableFudge(FudgeFactor):
         self.check()
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        A = np.asarray(A, dtype=float)
+        A = _as_area(A)
         try:
             raw = self.fn(A)
             vectorised = not np.iscomplexobj(raw)
