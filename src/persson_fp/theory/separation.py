@@ -373,10 +373,16 @@ def separation_from_areas(psd: PSD, E_star, p_bar, zeta, A, fudge=None):
         z = np.concatenate(([1.0], z))
         A = np.concatenate((np.ones((1, p.size)), A))
     response = check_response(None, E_star)
-    V = response.V(psd, z)
+    with np.errstate(over="ignore", invalid="ignore"):
+        V = response.V(psd, z)
+        E_eff = response.effective_modulus((z * psd.q_l)[:, None], needed_for="the energy of separation_from_areas")
+    if not (np.all(np.isfinite(V)) and np.all(np.isfinite(E_eff))):
+        raise ValueError(
+            f"E_star = {E_star!r} puts V = E_star^2 <|grad h|^2> / 4 outside floating-point range; rescale the "
+            "pressure unit (e.g. MPa)"
+        )
     q = (z * psd.q_l)[:, None]
     # U = (1/2) int W M(q) dV with the surface compliance M(q) = 2 / (E_eff(q) q) (2 / (E* q) on the half-space)
-    E_eff = response.effective_modulus(q, needed_for="the energy of separation_from_areas")
 
     def trapezoid(f):
         if np.ndim(E_eff) == 0:  # a modulus without scale (the half-space): out of the sum
