@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import erfinv
 
-from persson_fp._validate import as_nonnegative_array, check_in_range
+from persson_fp._validate import as_float_array, as_nonnegative_array
 
 __all__ = [
     "GAMMA_YP08",
@@ -171,10 +171,14 @@ class NoFudge(FudgeFactor):
 
 
 def _as_area(A) -> np.ndarray:
-    """``A`` as a float array checked to lie in [0, 1] (the relative contact area), else a ``ValueError``."""
-    if type(A) is np.ndarray and A.dtype == np.float64 and (A.size == 0 or (A.min() >= 0.0 and A.max() <= 1.0)):
-        return A  # the common case (NaN fails the comparisons): nothing to convert
-    return check_in_range(A, "A (relative contact area)", 0.0, 1.0)
+    """``A`` (the relative contact area) as a finite float array, else a ``ValueError`` naming ``A``.
+
+    NaN, inf, None, strings, bools and complex values are refused; the range [0, 1] is not enforced here, as the
+    solvers evaluate S at trial states a round-off outside it (e.g. 1 + 1e-11 in the method of lines).
+    """
+    if type(A) is np.ndarray and A.dtype == np.float64 and (A.size == 0 or np.isfinite(A.min() + A.max())):
+        return A  # the common case (NaN or inf fails the test): nothing to convert
+    return as_float_array(A, "A (relative contact area, in [0, 1])")
 
 
 def _check_gamma(gamma, name, lo, hi):
