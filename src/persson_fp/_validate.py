@@ -15,6 +15,7 @@ __all__ = [
     "as_positive_scalar",
     "as_float_array",
     "check_in_range",
+    "as_nonnegative_array",
     "as_file_path",
 ]
 
@@ -102,6 +103,16 @@ def check_in_range(a, name: str, lo: float, hi: float, *, rtol: float = 1e-12) -
         bad = a[(a < lo - slack_lo) | (a > hi + slack_hi)].ravel()[0]
         raise ValueError(f"{name} must lie in [{lo:.17g}, {hi:.17g}], got {float(bad)!r}")
     return np.clip(a, lo, hi)
+
+
+def as_nonnegative_array(value, name: str, *, allow_zero: bool = True) -> np.ndarray:
+    """``value`` as a finite float array whose elements are all >= 0 (or > 0), else a ``ValueError``."""
+    a = as_float_array(value, name)
+    bad = a < 0.0 if allow_zero else a <= 0.0
+    if np.any(bad):
+        rel = ">=" if allow_zero else ">"
+        raise ValueError(f"{name} must be {rel} 0 everywhere, got {float(a[bad].ravel()[0])!r}")
+    return a
 
 
 def as_file_path(path, name: str = "path") -> str:

@@ -43,6 +43,14 @@ CASES = [
     ("fudge.YangPersson gamma", lambda b: pf.fudge.YangPersson(b), "gamma", NUMBER + HUGE),
     ("fudge.WangMuser gamma", lambda b: pf.fudge.WangMuser(b), "gamma", NUMBER + HUGE),
     ("fudge.Xu24 gamma", lambda b: pf.fudge.Xu24(b), "gamma", NUMBER + HUGE),
+    ("fudge.FudgeFactor.S A", lambda b: pf.fudge.YangPersson().S(b), "A", ELEMENTS),
+    ("fudge.Xu24.area V", lambda b: pf.fudge.Xu24().area(0.1, b), "V", ELEMENTS + [-1.0]),
+    (
+        "EffectiveVariance.tau p_bar",
+        lambda b: pf.EffectiveVariance(pf.fudge.YangPersson()).tau(b, 1.0),
+        "p_bar",
+        ARRAY,
+    ),
     ("fudge.resolve fudge", lambda b: pf.fudge.resolve(b), "fudge", ["x", "YP09", 1.0, True, [1.0]]),
     ("fudge.CallableFudge fn", lambda b: pf.fudge.CallableFudge(b), "fudge", NOT_AN_OBJECT),
     (
@@ -79,6 +87,7 @@ CASES = [
     ),
     ("abel_inverse C1D", lambda b: pf.abel_inverse([1.0, 2.0, 3.0], b), "C1D", NOT_A_NUMBER + [[1.0, -1.0, 0.5]]),
     ("SelfAffinePSD C0", lambda b: pf.SelfAffinePSD(b, 0.8, 1.0, 2.0, 10.0), "C0", NUMBER),
+    ("SelfAffinePSD.C q", lambda b: PSD.C(b), "q", ELEMENTS + [-1.0, -1e-300]),
     ("TabulatedPSD C", lambda b: pf.TabulatedPSD([1.0, 2.0], b), "C", ELEMENTS + [[1.0, -1.0], [1.0]]),
     ("ContactProblem E_star", lambda b: pf.ContactProblem(PSD, b, 0.05), "E_star", NUMBER + HUGE),
     ("ContactProblem p_bar", lambda b: pf.ContactProblem(PSD, 1.0, b), "p_bar", ARRAY + HUGE),

@@ -254,7 +254,13 @@ def pair_surfaces(psd_or_surfaces, data, quantities=None) -> list[Dataset]:
         or (isinstance(data, np.ndarray) and data.ndim == 2)
     )
     if not single:
-        tables = list(data)
+        try:
+            tables = list(data)
+        except TypeError:
+            raise ValueError(
+                "data must be a table (a CSV file name, a DataFrame, a mapping of columns or a 2-D array) or a "
+                f"sequence of tables, one per surface; got {type(data).__name__} {data!r}"
+            ) from None
         if len(tables) != len(surfaces):
             raise ValueError(f"got {len(tables)} data tables for {len(surfaces)} surfaces (one table per surface)")
         out = []

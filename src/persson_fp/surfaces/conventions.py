@@ -281,5 +281,7 @@ def to_persson(q, C, convention: str = "persson", q_unit: str = "rad/length", H=
     if convention == "q/pi*2d":
         return q, C / (4.0 * np.pi * q)
     if H is not None:
-        return q, abel_factor(float(H)) * C / (4.0 * np.pi**2 * q)
+        if np.ndim(H) != 0:  # (abel_factor refuses a complex, bool, string or out-of-range H by name)
+            raise ValueError(f"H must be one real number (the Hurst exponent of the spectrum's tail), got {H!r}")
+        return q, abel_factor(H) * C / (4.0 * np.pi**2 * q)
     return q, abel_inverse(q, C)

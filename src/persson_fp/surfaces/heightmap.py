@@ -181,7 +181,7 @@ def _calibrate(power, q_axes, steps, h2, g2, notes):
 
 
 def _size(size, ndim):
-    s = np.atleast_1d(np.asarray(size, dtype=float))
+    s = np.atleast_1d(as_float_array(size, "size"))  # (a bool, complex or string size is refused by name)
     if s.size == 1:
         s = np.repeat(s, ndim)
     if s.size != ndim:

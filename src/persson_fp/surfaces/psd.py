@@ -282,8 +282,14 @@ class PSD:
         """
         E_star = np.float64(as_positive_scalar(E_star, "E_star"))
         m = self.moment_unchecked(3, self._zeta(zeta))
-        with np.errstate(over="ignore"):  # out of range -> inf (ContactProblem refuses it), never OverflowError
-            return 0.25 * E_star**2 * (2.0 * np.pi * m)
+        with np.errstate(over="ignore"):  # out of range -> a ValueError below, never OverflowError
+            V = 0.25 * E_star**2 * (2.0 * np.pi * m)
+        if not np.all(np.isfinite(V)):
+            raise ValueError(
+                f"E_star = {float(E_star)!r} puts V = E_star^2 <|grad h|^2> / 4 outside floating-point range; "
+                "rescale (e.g. pressures in MPa)"
+            )
+        return V
 
     def zeta_of_V(self, V: ArrayLike, E_star: float = 1.0) -> np.ndarray:
         """Magnification at which the complete-contact variance reaches ``V``.
@@ -301,11 +307,15 @@ class PSD:
         Returns
         -------
         numpy.ndarray, dimensionless
-            zeta with V(zeta) = ``V``: 1 for V <= 0, ``zeta_max`` for V >= V(zeta_max).
+            zeta with V(zeta) = ``V``: 1 for V = 0, ``zeta_max`` for V >= V(zeta_max).
         """
-        return self.zeta_of_V_unchecked(
-            np.asarray(as_float_array(V, "V"), dtype=float), as_positive_scalar(E_star, "E_star")
-        )
+        V = as_float_array(V, "V")
+        if np.any(V < 0.0):
+            raise ValueError(f"V must be >= 0 everywhere (a variance), got {float(V[V < 0.0].ravel()[0])!r}")
+        E_star = as_positive_scalar(E_star, "E_star")
+        if not math.isfinite(E_star * E_star):
+            raise ValueError(f"E_star = {E_star!r} is outside floating-point range (E_star^2 overflows); rescale")
+        return self.zeta_of_V_unchecked(V, E_star)
 
     def zeta_of_V_unchecked(self, V, E_star: float) -> np.ndarray:
         """:meth:`zeta_of_V` at variances already checked: the kernel for a solver's inner loop, nothing validated.
@@ -506,11 +516,13 @@ class SelfAffinePSD(PSD):
         return self.q_r / self.q_l
 
     def C(self, q: ArrayLike) -> np.ndarray:
-        if type(q) is float and math.isfinite(q):  # one wavenumber: the same branches in floats
+        if type(q) is float and math.isfinite(q) and q >= 0.0:  # one wavenumber: the same branches in floats
             if not self.q_l <= q <= self.q_s:
                 return np.float64(0.0)
             return self.C0 * np.power(np.float64(self.q_r if q < self.q_r else q), -2.0 * (1.0 + self.H))
         q = as_float_array(q, "q")
+        if np.any(q < 0.0):
+            raise ValueError(f"q must be >= 0 everywhere (a wavenumber), got {float(q[q < 0.0].ravel()[0])!r}")
         plateau = self.C0 * np.power(np.float64(self.q_r), -2.0 * (1.0 + self.H))
         with np.errstate(divide="ignore"):
             tail = self.C0 * np.power(np.where(q > 0, q, 1.0), -2.0 * (1.0 + self.H))

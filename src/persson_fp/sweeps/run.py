@@ -180,7 +180,13 @@ def _resolve_models(models):
     elif isinstance(models, dict):  # one model given as a dict of keywords
         items = [(None, models)]
     else:
-        items = [(None, m) for m in models]
+        try:
+            items = [(None, m) for m in models]
+        except TypeError:
+            raise ValueError(
+                "models must be a model (None, a fudge-factor name or object, a callable S(A), a dict of "
+                f"ContactProblem keywords) or a list / dict (label -> model) of them; got {models!r}"
+            ) from None
     out = []
     for label, spec in items:
         auto, kwargs, columns = _resolve_model(spec)

@@ -382,14 +382,22 @@ def pastewka_robbins(psd, E_star, w, rho) -> dict:
     w = as_positive_scalar(w, "w")
     rho = as_positive_scalar(rho, "rho")
     h1, h2 = _moments(psd)
-    number = h1 * E_star * rho / (2.0 * w) * (h1 * h1 / (h2 * rho)) ** (2.0 / 3.0)
-    g0 = 16.0 / 3.0 * h1 * h1 / h2
+    # rho^(1/3) taken apart: rho * rho^(-2/3) overflows to inf * 0 = NaN for rho near the float limit
+    with np.errstate(over="ignore", under="ignore"):
+        number = float(h1 * E_star / (2.0 * w) * np.cbrt(rho) * (h1 * h1 / h2) ** (2.0 / 3.0))
+        g0 = 16.0 / 3.0 * h1 * h1 / h2
+        ratio = rho / g0
+    if not (np.isfinite(number) and number > 0.0 and np.isfinite(ratio) and ratio > 0.0):
+        raise ValueError(
+            f"E_star = {E_star!r}, w = {w!r} and rho = {rho!r} (with the spectrum's g0 = {g0:.3g}) put the adhesion "
+            "number or rho / g0 outside floating-point range; rescale the units"
+        )
     return {
         "number": number,
         "sticky": bool(number < 1.0),
         "rms_slope": h1,
         "rms_curvature": h2,
-        "range_ratio": rho / g0,
+        "range_ratio": ratio,
     }
 
 

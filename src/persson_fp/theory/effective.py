@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import erf
 
+from persson_fp._validate import as_nonnegative_array
 from persson_fp.theory.fudge import FudgeFactor, NoFudge
 
 __all__ = ["EffectiveVariance", "effective_variance"]
@@ -161,8 +162,8 @@ class EffectiveVariance:
         numpy.ndarray, pressure^2
             tau(p_bar, V).
         """
-        p_bar = np.asarray(p_bar, dtype=float)
-        V = np.asarray(V, dtype=float)
+        p_bar = as_nonnegative_array(p_bar, "p_bar", allow_zero=False)
+        V = as_nonnegative_array(V, "V")
         if self.identity:
             return np.array(np.broadcast_to(V, np.broadcast_shapes(p_bar.shape, V.shape)))
         p2 = p_bar * p_bar
@@ -192,8 +193,8 @@ class EffectiveVariance:
         numpy.ndarray, pressure^2
             V(p_bar, tau).
         """
-        p_bar = np.asarray(p_bar, dtype=float)
-        tau = np.asarray(tau, dtype=float)
+        p_bar = as_nonnegative_array(p_bar, "p_bar", allow_zero=False)
+        tau = as_nonnegative_array(tau, "tau")
         if self.identity:
             return np.array(np.broadcast_to(tau, np.broadcast_shapes(p_bar.shape, tau.shape)))
         p2 = p_bar * p_bar

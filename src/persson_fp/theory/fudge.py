@@ -40,6 +40,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import erfinv
 
+from persson_fp._validate import as_float_array, as_nonnegative_array
+
 __all__ = [
     "GAMMA_YP08",
     "GAMMA_WM17",
@@ -162,10 +164,22 @@ class NoFudge(FudgeFactor):
     name: str = "none"
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        return np.ones_like(np.asarray(A, dtype=float))
+        return np.ones_like(
+            A if type(A) is np.ndarray and A.dtype == np.float64 and np.isfinite(A.sum()) else _as_area(A)
+        )
 
     def dS_dA(self, A: ArrayLike) -> np.ndarray:
         return np.zeros_like(np.asarray(A, dtype=float))
+
+
+def _as_area(A) -> np.ndarray:
+    """``A`` (the relative contact area) as a finite float array, else a ``ValueError`` naming ``A``.
+
+    NaN, inf, None, strings, bools and complex values are refused; the range [0, 1] is not enforced here, as the
+    solvers evaluate S at trial states a round-off outside it (e.g. 1 + 1e-11 in the method of lines).  The
+    common case, a finite float64 array, is let through inline by each ``S`` (no extra frame in a solver's loop).
+    """
+    return as_float_array(A, "A (relative contact area, in [0, 1])")
 
 
 def _check_gamma(gamma, name, lo, hi):
@@ -199,7 +213,7 @@ class YangPersson(FudgeFactor):
         object.__setattr__(self, "gamma", _check_gamma(self.gamma, "YP08", 0.0, 1.0))
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        A = np.asarray(A, dtype=float)
+        A = A if type(A) is np.ndarray and A.dtype == np.float64 and np.isfinite(A.sum()) else _as_area(A)
         return self.gamma + (1.0 - self.gamma) * A * A
 
     def dS_dA(self, A: ArrayLike) -> np.ndarray:
@@ -226,7 +240,7 @@ class WangMuser(FudgeFactor):
         self.check()
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        A2 = np.asarray(A, dtype=float) ** 2
+        A2 = (A if type(A) is np.ndarray and A.dtype == np.float64 and np.isfinite(A.sum()) else _as_area(A)) ** 2
         return self.gamma - (2.0 / 9.0) * A2 + (11.0 / 9.0 - self.gamma) * A2 * A2
 
     def dS_dA(self, A: ArrayLike) -> np.ndarray:
@@ -278,7 +292,7 @@ class Xu24(FudgeFactor):
         return self.gamma + (1.0 - self.gamma) * np.asarray(A, dtype=float)
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        A = np.asarray(A, dtype=float)
+        A = A if type(A) is np.ndarray and A.dtype == np.float64 and np.isfinite(A.sum()) else _as_area(A)
         inside = A < 1.0
         with np.errstate(all="ignore"):
             x = erfinv(np.where(inside, A, 0.0))
@@ -303,7 +317,8 @@ class Xu24(FudgeFactor):
         """
         from scipy.special import erf
 
-        p_bar, V = np.broadcast_arrays(np.asarray(p_bar, float), np.asarray(V, float))
+        p_bar = as_nonnegative_array(p_bar, "p_bar", allow_zero=False)
+        p_bar, V = np.broadcast_arrays(p_bar, as_nonnegative_array(V, "V"))
         x0 = np.divide(p_bar, np.sqrt(2.0 * V), out=np.full(p_bar.shape, np.inf), where=V > 0)
         x0 = np.minimum(x0, 40.0)  # erf(40 / sqrt(g)) == 1 exactly; keeps exp(-x^2) x finite
         lo = np.zeros(p_bar.shape)
@@ -348,7 +363,7 @@ class CallableFudge(FudgeFactor):
         self.check()
 
     def S(self, A: ArrayLike) -> np.ndarray:
-        A = np.asarray(A, dtype=float)
+        A = A if type(A) is np.ndarray and A.dtype == np.float64 and np.isfinite(A.sum()) else _as_area(A)
         try:
             raw = self.fn(A)
             vectorised = not np.iscomplexobj(raw)

@@ -43,6 +43,8 @@ _SQ2PI = np.sqrt(2.0 * np.pi)
 MAX_SAMPLES = 10**8
 """Most samples :meth:`GapDistribution.sample` draws in one call (over all loads; 0.8 GB)."""
 
+MAX_P_BAR = 1e150
+"""Largest load of :class:`GapDistribution` (pressure): its square stays a finite float."""
 MAX_STATIONS = 10**6
 """Largest ``n_area`` or ``n_zeta`` of a :class:`GapDistribution`."""
 
@@ -121,6 +123,10 @@ class GapDistribution:
         p = as_float_array(p_bar, "p_bar").reshape(-1)
         if p.size == 0 or not np.all(p > 0):
             raise ValueError("p_bar must hold at least one load, all > 0 (pressure)")
+        if np.any(p > MAX_P_BAR):
+            raise ValueError(
+                f"p_bar must lie in (0, {MAX_P_BAR:.0e}] (p_bar^2 stays a float), got {float(p.max())!r}; rescale"
+            )
         for name, n in (("n_area", n_area), ("n_zeta", n_zeta)):
             if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 8 <= n <= MAX_STATIONS:
                 raise ValueError(f"{name} must be an integer in [8, {MAX_STATIONS:.0e}], got {n!r}")

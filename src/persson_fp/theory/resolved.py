@@ -156,7 +156,13 @@ class MagnificationResolved:
         self.weighting = weighting
         self._w = _weight(self.fudge, weighting)
         self._ev = effective_variance(self.fudge)
-        self.V_max = float(self.response.V(psd))
+        with np.errstate(over="ignore", under="ignore"):
+            self.V_max = float(self.response.V(psd))
+        if not (np.isfinite(self.V_max) and self.V_max > 1e-280):
+            raise ValueError(
+                f"E_star = {self.E_star!r} and the spectrum give V(zeta_max) = {self.V_max!r} (V = E_star^2 "
+                "<|grad h|^2> / 4), outside floating-point range; rescale the pressure unit (e.g. MPa)"
+            )
         self.h2_max = float(psd.h2())
         self._y_cut = _Y_CUT * np.sqrt(max(float(self.fudge.S(np.array(1.0))), 1.0))
         # ln g on a fine uniform table in ln y, interpolated linearly (error ~1e-6 relative in g where it matters;

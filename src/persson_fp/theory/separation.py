@@ -63,6 +63,8 @@ _CHUNK = 512
 
 MAX_PER_UNIT = 1000
 """Largest ``n_per_unit`` of :class:`MeanSeparation` (about 4e5 quadrature nodes)."""
+MAX_DECADES = 100.0
+"""Largest ``decades`` of :class:`MeanSeparation` (the quadrature's lower end stays a normal float)."""
 
 
 class MeanSeparation:
@@ -87,8 +89,8 @@ class MeanSeparation:
         Gauss-Legendre panels per unit of :math:`\ln\sigma` (1 to 1000; 12 nodes each).  The default 2 gives
         ~1e-10 relative on the reference surfaces (tests check it against independent quadrature).
     decades : float
-        The rule covers :math:`\sigma \in [\sigma_{max} e^{-\text{decades}\ln 10}, \sigma_{max}]` (>= 4); the part
-        below contributes a fraction of order :math:`10^{-\text{decades}}` of :math:`\bar u` at small loads.
+        The rule covers :math:`\sigma \in [\sigma_{max} e^{-\text{decades}\ln 10}, \sigma_{max}]` (in [4, 100]); the
+        part below contributes a fraction of order :math:`10^{-\text{decades}}` of :math:`\bar u` at small loads.
     response : ElasticResponse, optional
         The solid's response (:mod:`persson_fp.theory.response`); default the elastic half-space of ``E_star``
         (which then only normalises ``beta``).  One without stored elastic energy raises ``ValueError``.
@@ -97,7 +99,7 @@ class MeanSeparation:
     ------
     ValueError
         ``psd`` not a :class:`~persson_fp.PSD`, an unknown weighting or fudge model, ``E_star`` not > 0,
-        ``n_per_unit`` not an integer in [1, 1000], ``decades`` < 4, or ``E_star`` so large or small that
+        ``n_per_unit`` not an integer in [1, 1000], ``decades`` outside [4, 100], or ``E_star`` so large or small that
         V(zeta_max) leaves the floating-point range.
 
     Notes
@@ -132,8 +134,8 @@ class MeanSeparation:
         if not 1 <= n_per_unit <= MAX_PER_UNIT:
             raise ValueError(f"n_per_unit must be an integer in [1, {MAX_PER_UNIT}], got {n_per_unit!r}")
         decades = as_positive_scalar(decades, "decades")
-        if decades < 4:
-            raise ValueError(f"decades must be >= 4, got {decades!r}")
+        if not 4 <= decades <= MAX_DECADES:
+            raise ValueError(f"decades must lie in [4, {MAX_DECADES}], got {decades!r}")
         self.psd = psd
         self.E_star = as_positive_scalar(E_star, "E_star")
         self.response = check_response(response, self.E_star)
@@ -371,10 +373,16 @@ def separation_from_areas(psd: PSD, E_star, p_bar, zeta, A, fudge=None):
         z = np.concatenate(([1.0], z))
         A = np.concatenate((np.ones((1, p.size)), A))
     response = check_response(None, E_star)
-    V = response.V(psd, z)
+    with np.errstate(over="ignore", invalid="ignore"):
+        V = response.V(psd, z)
+        E_eff = response.effective_modulus((z * psd.q_l)[:, None], needed_for="the energy of separation_from_areas")
+    if not (np.all(np.isfinite(V)) and np.all(np.isfinite(E_eff))):
+        raise ValueError(
+            f"E_star = {E_star!r} puts V = E_star^2 <|grad h|^2> / 4 outside floating-point range; rescale the "
+            "pressure unit (e.g. MPa)"
+        )
     q = (z * psd.q_l)[:, None]
     # U = (1/2) int W M(q) dV with the surface compliance M(q) = 2 / (E_eff(q) q) (2 / (E* q) on the half-space)
-    E_eff = response.effective_modulus(q, needed_for="the energy of separation_from_areas")
 
     def trapezoid(f):
         if np.ndim(E_eff) == 0:  # a modulus without scale (the half-space): out of the sum
