@@ -231,6 +231,8 @@ def _pass(psd, material, sigma0, v, aT, bT, q1, S, red_G, soft, refine):
     nu2 = 1.0 - material.nu**2
     gG = q4C * (bT * bT)[:, None] * Phi / (8.0 * sigma0 * sigma0 * (nu2 * nu2 if red_G else 1.0))
     G, G1 = rule.cumulative(gG[:, 1:])
+    if not (np.all(np.isfinite(G1)) and np.all(np.isfinite(gG))):
+        raise FloatingPointError("G(q) out of floating-point range")  # (named as sigma0's by rubber_friction)
     G = np.maximum(G, 0.0)  # a running integral of a positive function: round-off never makes it negative
     with np.errstate(divide="ignore"):
         P = erf(0.5 / np.sqrt(G))
@@ -381,9 +383,12 @@ def rubber_friction(
         raise ValueError("velocity x a_T(temperature) x q leaves floating-point range; check the units and the shift")
     _coverage(material, psd.q_l, q1, (psd.q_l * vb * aT, q1 * vb * aT))
 
-    with np.errstate(over="ignore", divide="ignore", invalid="ignore", under="ignore"):  # judged just below
-        coarse = _pass(psd, material, sigma0, vb, aT, bT, q1, S, modulus_in_G == "reduced", soft, 1)
-        fine = _pass(psd, material, sigma0, vb, aT, bT, q1, S, modulus_in_G == "reduced", soft, 2)
+    try:
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore", under="ignore"):  # judged just below
+            coarse = _pass(psd, material, sigma0, vb, aT, bT, q1, S, modulus_in_G == "reduced", soft, 1)
+            fine = _pass(psd, material, sigma0, vb, aT, bT, q1, S, modulus_in_G == "reduced", soft, 2)
+    except FloatingPointError:
+        coarse = fine = (np.full(vb.size, np.nan),) * 6
     mu, A, qn, G, G1, P = fine
     if not (np.all(np.isfinite(mu)) and np.all(np.isfinite(coarse[0])) and np.all(np.isfinite(G1))):
         raise ValueError(
