@@ -53,6 +53,15 @@ def test_import_loads_no_heavy_module():
     assert _heavy_in(loaded) == []
 
 
+def test_first_problem_loads_neither_the_interface_nor_the_heightmap_import():
+    """The gap physics and the height-map import load with their first name, not with the package."""
+    loaded = _loaded_after("import persson_fp")
+    for lazy in ("persson_fp.analysis.interface", "persson_fp.theory.adhesion", "persson_fp.surfaces.heightmap"):
+        assert lazy not in loaded
+    loaded = _loaded_after("import persson_fp\npersson_fp.leak_rate")
+    assert "persson_fp.analysis.interface" in loaded and "persson_fp.surfaces.heightmap" not in loaded
+
+
 def test_heavy_names_load_on_first_use():
     loaded = _loaded_after("from persson_fp import calibrate")
     assert "persson_fp.calibration" in loaded

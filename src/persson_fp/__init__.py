@@ -19,28 +19,17 @@ from typing import TYPE_CHECKING, Any
 from persson_fp._version import __version__
 from persson_fp.analysis.energy import elastic_energy, pressure_spectrum
 from persson_fp.analysis.exact import ExactSolution, exact
-from persson_fp.analysis.interface import (
-    AdhesiveContact,
-    adhesive_contact,
-    contact_conductance,
-    gap_distribution,
-    leak_rate,
-)
 from persson_fp.analysis.separation import contact_stiffness, mean_separation
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.problems.fokker_planck import FokkerPlanckProblem
 from persson_fp.results.solution import Comparison, InstabilityError, Solution, SolverError
 from persson_fp.solvers import METHODS, available_methods, solve
 from persson_fp.surfaces.conventions import CONVENTIONS, abel_factor, abel_forward, abel_inverse
-from persson_fp.surfaces.heightmap import MeasuredSurface, psd_from_heightmap, psd_from_profiles
 from persson_fp.surfaces.psd import PSD, SelfAffinePSD
-from persson_fp.surfaces.readers import from_surface_topography, read_contact_engineering_csv, read_heightmap
 from persson_fp.surfaces.tabulated import TabulatedPSD
-from persson_fp.theory import adhesion, fudge, hardness
+from persson_fp.theory import fudge, hardness
 from persson_fp.theory.effective import EffectiveVariance, effective_variance
-from persson_fp.theory.gaps import GapDistribution
 from persson_fp.theory.image import area_from_tau, image_pdf, variance_closed_form
-from persson_fp.theory.resolved import MagnificationResolved
 from persson_fp.theory.separation import WEIGHTINGS, MeanSeparation, separation_from_areas
 
 __all__ = [
@@ -109,8 +98,22 @@ __all__ = [
     "sliding_contact",
 ]
 
-# Public names whose modules are heavy (scipy.optimize, scipy.stats): name -> (defining module, attribute there).
+# Public names whose modules are heavy (scipy.optimize, scipy.stats) or not needed by a first problem (the interface,
+# the height-map import): name -> (defining module, attribute there).
 _LAZY: dict[str, tuple[str, str]] = {
+    "AdhesiveContact": ("persson_fp.analysis.interface", "AdhesiveContact"),
+    "adhesive_contact": ("persson_fp.analysis.interface", "adhesive_contact"),
+    "contact_conductance": ("persson_fp.analysis.interface", "contact_conductance"),
+    "gap_distribution": ("persson_fp.analysis.interface", "gap_distribution"),
+    "leak_rate": ("persson_fp.analysis.interface", "leak_rate"),
+    "GapDistribution": ("persson_fp.theory.gaps", "GapDistribution"),
+    "MagnificationResolved": ("persson_fp.theory.resolved", "MagnificationResolved"),
+    "MeasuredSurface": ("persson_fp.surfaces.heightmap", "MeasuredSurface"),
+    "psd_from_heightmap": ("persson_fp.surfaces.heightmap", "psd_from_heightmap"),
+    "psd_from_profiles": ("persson_fp.surfaces.heightmap", "psd_from_profiles"),
+    "read_heightmap": ("persson_fp.surfaces.readers", "read_heightmap"),
+    "read_contact_engineering_csv": ("persson_fp.surfaces.readers", "read_contact_engineering_csv"),
+    "from_surface_topography": ("persson_fp.surfaces.readers", "from_surface_topography"),
     "sweep": ("persson_fp.sweeps.run", "sweep"),
     "SweepError": ("persson_fp.sweeps.run", "SweepError"),
     "SweepResult": ("persson_fp.sweeps.table", "SweepResult"),
@@ -124,7 +127,10 @@ _LAZY: dict[str, tuple[str, str]] = {
     "FrictionResult": ("persson_fp.analysis.friction", "FrictionResult"),
     "sliding_contact": ("persson_fp.problems.sliding", "sliding_contact"),
 }
-_LAZY_MODULES: dict[str, str] = {"viscoelastic": "persson_fp.theory.viscoelastic"}
+_LAZY_MODULES: dict[str, str] = {
+    "viscoelastic": "persson_fp.theory.viscoelastic",
+    "adhesion": "persson_fp.theory.adhesion",
+}
 # Subpackages that were attributes of the package after ``import persson_fp`` and now load on first access.
 _LAZY_SUBMODULES = frozenset({"calibration", "sweeps"})
 
@@ -132,15 +138,27 @@ if TYPE_CHECKING:  # what the static tools see; at run time these load on first 
     from persson_fp import calibration as calibration
     from persson_fp import sweeps as sweeps
     from persson_fp.analysis.friction import FrictionResult, rubber_friction
+    from persson_fp.analysis.interface import (
+        AdhesiveContact,
+        adhesive_contact,
+        contact_conductance,
+        gap_distribution,
+        leak_rate,
+    )
     from persson_fp.calibration.fit import calibrate
     from persson_fp.calibration.result import Calibration
     from persson_fp.calibration.select import ModelSelection
     from persson_fp.problems.sliding import sliding_contact
+    from persson_fp.surfaces.heightmap import MeasuredSurface, psd_from_heightmap, psd_from_profiles
+    from persson_fp.surfaces.readers import from_surface_topography, read_contact_engineering_csv, read_heightmap
     from persson_fp.sweeps.quantities import QUANTITIES, register_quantity
     from persson_fp.sweeps.run import SweepError, sweep
     from persson_fp.sweeps.table import SweepResult
     from persson_fp.sweeps.table import read_table as read_sweep_table
+    from persson_fp.theory import adhesion as adhesion
     from persson_fp.theory import viscoelastic as viscoelastic
+    from persson_fp.theory.gaps import GapDistribution
+    from persson_fp.theory.resolved import MagnificationResolved
 
 
 def __getattr__(name: str) -> Any:
