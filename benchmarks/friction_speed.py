@@ -104,7 +104,8 @@ def main(argv=None):
         "# Rubber friction: speed and accuracy\n\n"
         f"`python benchmarks/friction_speed.py{' --quick' if args.quick else ''}` ({machine()}; medians of "
         f"{repeats} warm calls, the first call apart). True errors: against every quadrature refined fourfold.\n\n"
-        + table + "\n"
+        + table
+        + "\n"
     )
     with open(os.path.join(out, "friction_speed.md"), "w") as fh:
         fh.write(text)

@@ -228,7 +228,7 @@ def general():
     ]
 
 
-_SCENES = {"scene B": "constant hardness σ_Y = 0.035", "the README's example": "moving wall σ_Y = 0.035 ζ^0.2"}
+_SCENES = {"scene B": "constant hardness σ_Y = 0.035", "scene W (moving wall)": "moving wall σ_Y = 0.035 ζ^0.2"}
 
 
 def moving_wall():

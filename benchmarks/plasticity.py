@@ -8,7 +8,7 @@ B. a moving yield wall sigma_Y = sigma_1 zeta^0.2, p_bar = 0.3 sigma_1, zeta to 
    that A_pl ~ 0.17: fv, mol and (no fudge) chebyshev against fv's own Richardson-extrapolated fine-grid value,
    with each run's error estimate and the observed order;
 C. zeta_max = 1e16 with sigma_Y = sigma_1 zeta^0.2 (self-similar: sqrt(V) grows like sigma_Y): fv;
-D. ``method="auto"`` on scene B (no fudge) and on the README's moving-wall example (sigma_Y = 0.035 zeta^0.2 to
+D. ``method="auto"`` on scene B (no fudge) and on the moving-wall scene W (sigma_Y = 0.035 zeta^0.2 to
    zeta = 128; not in --quick) at tol = 1e-3 ... 1e-8: the whole call (median), what auto chose (or what it raised,
    and after how long), its own estimate and the true error -- the areas A_el, A_pl, A_non against the
    extrapolation of fv on 1600, 3200 and 6400 cells (Aitken's delta-squared, i.e. with the observed order; the
@@ -327,7 +327,7 @@ def main(argv=None):
     tols = (1e-3, 1e-5) if quick else (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
     sections = [("scene B: sigma_1 zeta^0.2 to zeta = 10, A_pl = 0.167", moving_problem(None))]
     if not quick:  # (its fine reference and the tightest tols take minutes)
-        sections.append(("the README's example: 0.035 zeta^0.2 to zeta = 128, A_pl = 0.117", readme_moving_problem()))
+        sections.append(("scene W (moving wall): 0.035 zeta^0.2 to zeta = 128, A_pl = 0.117", readme_moving_problem()))
     auto_rows, done = [], []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -133,7 +133,7 @@ def test_plasticity_quick(tmp_path):
     assert "cn-uniform (peer)" in {r["method"] for r in rows}
     # scene D: auto on the moving wall, its true errors against the extrapolated fine fv within tol and its estimate
     auto = _rows(tmp_path / "plasticity_auto_tol.csv")
-    assert {r["scene"] for r in auto} == {"scene B"}  # (the README's example only in the full run)
+    assert {r["scene"] for r in auto} == {"scene B"}  # (scene W only in the full run)
     assert [float(r["tol"]) for r in auto] == [1e-3, 1e-5] and all(r["status"] == "ok" for r in auto)
     for r in auto:
         assert float(r["true_L1"]) <= float(r["estimate_L1"]) <= float(r["tol"])

@@ -39,7 +39,7 @@ def _batch(method, n, key):
     return float(row[key]) if row[key] else None
 
 
-_MOVING_WALL = "the README's example"
+_MOVING_WALL = "scene W (moving wall)"
 """The moving-wall scene's label in plasticity_auto_tol.csv (sigma_Y = 0.035 zeta^0.2, as the benchmark writes it)."""
 
 

@@ -149,7 +149,7 @@ def test_bem_mean_gaps_table():
     for fudge in ("YP08 γ=0.45", "WM17", "Xu24"):
         for spec in ("nominal", "realised"):
             assert err[(f"{fudge}, yang-persson", spec)] < err[(f"{fudge}, corrected-area", spec)]
-    # the README's numbers (rounded there to 0.1 %)
+    # the numbers of the performance page (rounded there to 0.1 %)
     assert err[("Persson (no fudge)", "nominal")] == pytest.approx(0.348, abs=0.001)
     assert err[("YP08 γ=0.45, yang-persson", "nominal")] == pytest.approx(0.083, abs=0.001)
     assert err[("YP08 γ=0.45, corrected-area", "nominal")] == pytest.approx(0.140, abs=0.001)

@@ -83,8 +83,8 @@ def test_solve_command_writes_p0_and_plot_without_a_closed_form(tmp_path, capsys
     assert "estimate" in capsys.readouterr().out
 
 
-def test_readme_elastoplastic_example_shows_plasticity():
-    """The README's example: A_pl of order 0.1 under both walls, quiet (no oscillation warning), its numbers."""
+def test_elastoplastic_example_shows_plasticity():
+    """An elastoplastic example: A_pl of order 0.1 under both walls, quiet (no oscillation warning), its numbers."""
     import warnings
 
     psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=128.0)
