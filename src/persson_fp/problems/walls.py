@@ -1,7 +1,7 @@
 r"""The walls of the pressure domain: objects a problem carries and every method asks.
 
 Persson's diffusion equation (Xu et al. tutorial, Eq. 'E:diffusion_equ') lives on a pressure interval whose ends
-absorb probability mass.  What an end absorbs is an area: the absorbing wall at p = 0 (Eq. 'eq:BC1') takes the
+absorb probability mass.  What an end absorbs is an area: the absorbing wall at p = 0 (Eq. 'E:BC_p0') takes the
 non-contact area; a yield wall at the hardness sigma_Y(zeta) takes the plastic contact area (Persson, Phys. Rev.
 Lett. 87 (2001) 116101); without a hardness the far end is open (the PDF decays like the image solution,
 Eq. 'eq:P0_solution') and a numerical method cuts its grid where the mass left is below double precision, so
@@ -137,7 +137,7 @@ class Wall:
 
 
 class AbsorbingWall(Wall):
-    """Persson's wall at p = 0 (Xu et al. tutorial, Eq. 'eq:BC1', P(0, zeta) = 0): what it absorbs is the
+    """Persson's wall at p = 0 (Xu et al. tutorial, Eq. 'E:BC_p0', P(0, zeta) = 0): what it absorbs is the
     non-contact area."""
 
     description = "the absorbing wall at p = 0"
