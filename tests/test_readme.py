@@ -75,7 +75,9 @@ def _separation_wm17(C, V):
     from scipy.integrate import quad
     from scipy.special import erf
 
-    x, w = np.polynomial.legendre.leggauss(400)
+    from scipy.special import roots_legendre
+
+    x, w = roots_legendre(400)
     nodes, weights = [], []
     for a, b in ((QL, QR), (QR, QS)):
         la, lb = math.log(a), math.log(b)
