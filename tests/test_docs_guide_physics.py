@@ -247,6 +247,11 @@ def test_references_match_the_spectrum_they_describe():
 # -- the pages -------------------------------------------------------------------------------------------------------
 def test_measured_surfaces_page(capsys):
     ns, out = run("measured_surfaces.md", capsys)
+    import os
+    import shutil
+
+    for written in (ns["path"], ns["csv_path"]):  # the page's example files, in folders of their own
+        shutil.rmtree(os.path.dirname(written))
     h, L, n = ns["heights"], ns["L"], ns["n"]
     # the map's rms height and spectral rms slope, computed here from the heights
     hk = np.fft.fft2(h - h.mean()) / h.size
