@@ -109,27 +109,51 @@ class MeasuredSurface:
         return self.psd.rms_height / self.rms_height_data - 1.0, self.rms_slope_spectrum / self.rms_slope_data - 1.0
 
     def describe(self) -> str:
-        """A few lines for a report or a CSV header: source, convention, rms values, notes.
+        r"""A few lines for a report or a CSV header: source, convention, each rms value named with how it is taken.
+
+        The spectrum's rms height and slope are its integrals over the band :math:`[q_l, q_s]`,
+        :math:`\sqrt{2\pi\int qC\,dq}` and :math:`\sqrt{2\pi\int q^3C\,dq}` (exact derivative).  The height data's
+        rms slope is the spectral derivative of periodic data, or central differences (``numpy.gradient``) of
+        non-periodic data; it is then compared with the spectrum seen through the same differences
+        (:func:`~persson_fp.surfaces.annuli.central_difference_slope`), a third number, which the percentage
+        compares, so each percentage is "spectrum / data - 1" of one definition.
 
         Returns
         -------
         str
-            Lines separated by newlines: the source, the spectrum's input convention and band (rad/length),
-            its rms height (length) and slope, the height data's with their relative differences, the notes.
+            Lines separated by newlines: the source, the spectrum's input convention and band (rad/length), its rms
+            height (length) and slope, the height data's with the definition of each and their relative differences,
+            the notes.
         """
         p = self.psd
+        band = f"over q in [{p.q_l:.6g}, {p.q_s:.6g}]"
         lines = [
             f"source: {self.source}",
             f"spectrum: Persson's isotropic C(q) (<h^2> = 2 pi int q C dq), input convention {p.convention!r}, "
             f"{p.q.size} points, q in [{p.q_l:.6g}, {p.q_s:.6g}] rad/length",
-            f"rms height {p.rms_height:.6g} length, rms slope {p.rms_slope:.6g} (from the spectrum)",
+            f"spectrum: rms height {p.rms_height:.6g} length = sqrt(2 pi int q C dq) {band}; rms slope "
+            f"{p.rms_slope:.6g} = sqrt(2 pi int q^3 C dq) {band} (exact derivative)",
         ]
         if self.rms_height_data is not None:
             eh, es = self.rms_errors
             lines.append(
-                f"height data: rms height {self.rms_height_data:.6g} ({eh:+.2%}), "
-                f"rms slope {self.rms_slope_data:.6g} ({es:+.2%}); slopes by {self.slope_definition} on both sides"
+                f"height data: rms height {self.rms_height_data:.6g} length (the detrended heights); "
+                f"spectrum / data - 1 = {eh:+.2%}"
             )
+            if self.grid_step is None:
+                lines.append(
+                    f"height data: rms slope {self.rms_slope_data:.6g} by the spectral derivative of the periodic "
+                    f"heights (sqrt(sum q^2 |h_q|^2)), against the spectrum's {self.rms_slope_spectrum:.6g}: "
+                    f"spectrum / data - 1 = {es:+.2%}"
+                )
+            else:
+                lines.append(
+                    f"height data: rms slope {self.rms_slope_data:.6g} by central differences of the heights "
+                    f"(numpy.gradient), against {self.rms_slope_spectrum:.6g}, the spectrum seen through the same "
+                    f"differences (sqrt(2 pi int q C K dq), K(q) = sum_a (1 - J0(2 q d_a)) / (2 d_a^2)): "
+                    f"spectrum / data - 1 = {es:+.2%}; central differences on both sides, so this slope is below the "
+                    "exact-derivative one"
+                )
         lines.extend(f"note: {n}" for n in self.notes)
         return "\n".join(lines)
 
