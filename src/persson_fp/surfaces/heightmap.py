@@ -11,10 +11,12 @@ Spectrum of a height map (periodic square or rectangle :math:`L_x\times L_y`, :m
 :math:`\hat h_k = N^{-1}\sum h\,e^{-i q_k\cdot x}`, :math:`C(q_k) = \frac{L_xL_y}{(2\pi)^2}|\hat h_k|^2`, so
 that :math:`\langle h^2\rangle = \sum_k C(q_k)\,\Delta^2q` exactly.  Radial averaging
 (:func:`persson_fp.surfaces.annuli.annulus_table`): the band is the data's, from the lowest mode radius
-:math:`2\pi/L` to the highest (the lattice's corner), and the table is fitted so that every annulus of the
-spectrum carries the power of the modes in it; the spectrum therefore carries the map's
-:math:`\langle h^2\rangle` and :math:`\langle|\nabla h|^2\rangle` (within 1 % on periodic self-affine maps with
-and without roll-off, H in [0.2, 0.9]; tests).  Beyond the Nyquist circle the annuli are incomplete; the notes
+:math:`2\pi/L` to the highest that carries power (at most the lattice's corner); the table has one point per
+annulus of modes, their mean C at their mean radius, sorted in q; a lift of the lowest radii (fading out by
+``4 * 2 pi / L``: the cells of the lowest modes reach below :math:`2\pi/L`) and a small tilt make the spectrum
+carry the map's :math:`\langle h^2\rangle` and :math:`\langle|\nabla h|^2\rangle` (to round-off on periodic
+self-affine maps with and without roll-off, H in [0.2, 0.9]; tests); the notes give the lift and the tilt.
+Beyond the Nyquist circle the annuli are incomplete; the notes
 give the share of the moments they carry.  A narrower band is a :class:`~persson_fp.TabulatedPSD` of the same
 table with ``q_l``/``q_s`` inside it.
 
@@ -39,7 +41,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from persson_fp._validate import as_float_array, as_positive_scalar
-from persson_fp.surfaces.annuli import annulus_table, central_difference_slope
+from persson_fp.surfaces.annuli import LOW, annulus_table, central_difference_slope
 from persson_fp.surfaces.tabulated import TabulatedPSD
 
 __all__ = [
@@ -131,8 +133,8 @@ class MeasuredSurface:
             f"source: {self.source}",
             f"spectrum: Persson's isotropic C(q) (<h^2> = 2 pi int q C dq), input convention {p.convention!r}, "
             f"{p.q.size} points, q in [{p.q_l:.6g}, {p.q_s:.6g}] rad/length",
-            f"spectrum: rms height {p.rms_height:.6g} length = sqrt(2 pi int q C dq) {band}; rms slope "
-            f"{p.rms_slope:.6g} = sqrt(2 pi int q^3 C dq) {band} (exact derivative)",
+            f"rms height {p.rms_height:.6g} length, rms slope {p.rms_slope:.6g} (the spectrum's, "
+            f"sqrt(2 pi int q C dq) and sqrt(2 pi int q^3 C dq) (exact derivative) {band})",
         ]
         if self.rms_height_data is not None:
             eh, es = self.rms_errors
@@ -374,7 +376,13 @@ def psd_from_heightmap(
     if window and not periodic:
         _calibrate(power, (QX.ravel(), QY.ravel()), (Lx / h.shape[0], Ly / h.shape[1]), rms_h**2, rms_s**2, notes)
     nz = qm > 0
-    q, C = annulus_table(qm[nz], power[nz], (2.0 * np.pi / Lx, 2.0 * np.pi / Ly), bins_per_decade, q_nyq)
+    q, C, (f0, g, F) = annulus_table(qm[nz], power[nz], (2.0 * np.pi / Lx, 2.0 * np.pi / Ly), bins_per_decade, q_nyq)
+    notes.append(
+        f"spectrum: one point per annulus of modes (their mean C at their mean radius), times a lift {f0:.3g} at "
+        f"q = {q[0]:.6g} fading out by {LOW:g} times that q and a tilt (q/q_l)^{g:+.3g}"
+        + ("" if abs(F - 1.0) < 1e-9 else f" and a factor {F:.3g}")
+        + ", so that it carries the data's <h^2> and <|grad h|^2> (the lowest modes' cells reach below q_l)"
+    )
     psd = TabulatedPSD(q, C)
     step = None if periodic else (Lx / h.shape[0], Ly / h.shape[1])
     return _check_rms(MeasuredSurface(psd, source, rms_h, rms_s, tuple(notes), step))
