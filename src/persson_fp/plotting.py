@@ -224,8 +224,11 @@ def plot_solution(
             title += "\nno closed form: the errors are the solver's estimates"
         if n_l > 1 or pressure_unit is not None:
             title += "\n" + _load_label(sol.problem.p_bar[j], scale, pressure_unit)
-    top = max(float(np.max(line.get_ydata())) for line in ax.get_lines())
-    reach = [float(np.max(line.get_xdata()[line.get_ydata() > 1e-3 * top], initial=0.0)) for line in ax.get_lines()]
+    # the axis ends where every curve has fallen below 1e-3 of its own peak (the far grid is empty)
+    reach = [
+        float(np.max(x[y > 1e-3 * np.max(y)], initial=0.0))
+        for x, y in ((np.asarray(ln.get_xdata()), np.asarray(ln.get_ydata())) for ln in ax.get_lines())
+    ]
     right = float(np.max([np.max(line.get_xdata()) for line in ax.get_lines()]))
     ax.set_xlim(left=min(0.0, ax.get_xlim()[0]), right=min(right, 1.05 * max(reach)) or None)
     ax.set_title(title, fontsize=9)
