@@ -77,58 +77,161 @@ def plot_exact_pdfs(problem: ContactProblem, zetas: ArrayLike, ax: Axes | None =
     return fig
 
 
-def plot_solution(sol: Solution, ax: Axes | None = None, stations: Sequence[int] | None = None) -> Figure:
-    """Numerical P0 (markers) against the exact solution (lines) at the stations of ``sol``.
+def _unit(unit: str | None) -> str:
+    """`` [unit]`` for an axis label, or nothing when the unit is not known."""
+    if unit is None:
+        return ""
+    if not isinstance(unit, str) or not unit.strip():
+        raise ValueError(f"a unit must be a non-empty string or None, got {unit!r}")
+    return f" [{unit.strip()}]"
 
-    Without a closed form (a moving yield wall, general coefficients) the numerical P0 is drawn alone (lines with
-    markers) and the title gives the solver's error estimate instead of the error.
+
+def _load_label(p_bar: float, scale: float | None = None, pressure_unit: str | None = None) -> str:
+    r"""Legend text of one load: :math:`\bar p` with its unit when known, and :math:`\bar p/\sqrt{V}` when ``scale``
+    (:math:`\sqrt{V}`, pressure) is given.
+
+    Parameters
+    ----------
+    p_bar : float, pressure
+        The nominal pressure.
+    scale : float, optional, pressure
+        :math:`\sqrt{V(\zeta_{max})}`; adds the relative load.
+    pressure_unit : str, optional
+        The unit of ``p_bar`` (e.g. ``"Pa"``); None: the number alone.
+
+    Returns
+    -------
+    str
+        E.g. ``"p̄ = 1e+05 Pa (p̄/√V = 0.5)"`` or ``"p̄ = 0.01 (p̄/√V = 0.5)"``.
+
+    Raises
+    ------
+    ValueError
+        ``pressure_unit`` not None or a non-empty string.
+    """
+    unit = _unit(pressure_unit)[2:-1]
+    text = f"p̄ = {float(p_bar):.3g}" + (f" {unit}" if unit else "")
+    if scale is not None and scale > 0:
+        text += f" (p̄/√V = {float(p_bar) / scale:.3g})"
+    return text
+
+
+def plot_solution(
+    sol: Solution,
+    ax: Axes | None = None,
+    stations: Sequence[int] | None = None,
+    loads: Sequence[int] | None = None,
+    pressure_unit: str | None = None,
+) -> Figure:
+    r"""Numerical P0 (markers) against the exact solution (lines) at the stations of ``sol``, every load.
+
+    One load: one curve per station, the title gives its error.  Several loads: one colour per load, at the last
+    station (or at ``stations``, told apart by line style), each legend entry giving :math:`\bar p` (with
+    ``pressure_unit``), :math:`\bar p/\sqrt{V}` and that load's L1 error at the last station drawn.  p is in units of
+    :math:`\sqrt{V(\zeta_{max})}`, the same for all loads.  Without a closed form (a moving yield wall, general
+    coefficients) the numerical P0 is drawn alone (lines with markers) and the errors are the solver's estimates
+    (marked ≈).  The time in the title is ``sol.wall_time``, as :meth:`Solution.summary` states it.
 
     Parameters
     ----------
     sol : Solution
-        A numerical solution from :func:`persson_fp.solve`; its first load is drawn.
+        A numerical solution from :func:`persson_fp.solve`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; default a new figure.
     stations : sequence of int, optional
-        Indices of the output stations to draw; default all.
+        Indices of the output stations to draw; default all with one load, the last with several.
+    loads : sequence of int, optional
+        Indices of the loads to draw; default all.
+    pressure_unit : str, optional
+        Unit of the problem's pressures for the legend (e.g. ``"Pa"``); None: numbers alone.
 
     Returns
     -------
     matplotlib.figure.Figure
         The figure drawn on.
+
+    Raises
+    ------
+    ValueError
+        An index in ``stations`` or ``loads`` out of range, or ``pressure_unit`` not a non-empty string.
     """
     from matplotlib.lines import Line2D
 
+    _unit(pressure_unit)
+    n_z, n_l = sol.zeta.size, sol.problem.n_loads
+    jdx = list(range(n_l)) if loads is None else [int(j) for j in loads]
+    several = len(jdx) > 1
+    idx = (list(range(n_z)) if not several else [n_z - 1]) if stations is None else [int(i) for i in stations]
+    for name, ii, n in (("stations", idx, n_z), ("loads", jdx, n_l)):
+        if not ii or any(not -n <= i < n for i in ii):
+            raise ValueError(f"{name} must be indices in [0, {n - 1}], got {ii!r}")
+    idx, jdx = [i % n_z for i in idx], [j % n_l for j in jdx]
     fig, ax = _axes(ax)
     scale = float(np.sqrt(sol.problem.V()))
     closed = sol.problem.has_closed_form
     ref = sol.exact_on_grid() if closed else None
-    idx = range(sol.zeta.size) if stations is None else stations
-    p = np.asarray(sol.p) if np.ndim(sol.p) == 1 else np.asarray(sol.p)[0]  # a grid per load: the first one's
-    step = max(1, p.size // 60)
-    for i in idx:
-        label = f"ζ = {sol.zeta[i]:.4g}"
-        if closed:
-            (line,) = ax.plot(p / scale, ref[i, 0] * scale, lw=1.2, label=label)
-            ax.plot(p[::step] / scale, sol.P0_all[i, 0, ::step] * scale, "o", ms=3, color=line.get_color(), mfc="none")
-        else:
-            (line,) = ax.plot(p / scale, sol.P0_all[i, 0] * scale, lw=0.8, label=label)
-            ax.plot(p[::step] / scale, sol.P0_all[i, 0, ::step] * scale, "o", ms=3, color=line.get_color(), mfc="none")
+    if closed:
+        err = sol.compare()
+        L1, dA, approx = err.L1, err.area_error, "= "
+    elif sol.info.get("error_estimate") is not None:
+        est = sol.error_estimate
+        L1, dA, approx = np.reshape(est["L1"], (n_z, n_l)), np.reshape(est["contact_area"], (n_z, n_l)), "≈ "
+    else:
+        L1 = dA = None
+        approx = "= "
+    L1 = None if L1 is None else np.reshape(L1, (n_z, n_l))
+    dA = None if dA is None else np.reshape(dA, (n_z, n_l))
+    p_all = np.asarray(sol.p)
+    styles = ["-", "--", ":", "-."]
+    last = idx[-1]
+    for c, j in enumerate(jdx):
+        color = f"C{c % 10}"
+        for s, i in enumerate(idx):
+            p = p_all if p_all.ndim == 1 else p_all[i]  # a moving yield wall: a grid per station
+            step = max(1, p.size // 60)
+            if several:
+                label = _load_label(sol.problem.p_bar[j], scale, pressure_unit) if i == last else None
+                if label is not None and L1 is not None:
+                    label += f": L1 {approx}{L1[i, j]:.2e}"
+                ls = styles[(len(idx) - 1 - s) % len(styles)]
+            else:
+                label, color, ls = f"ζ = {sol.zeta[i]:.4g}", None, "-"
+            curve = ref[i, j] if closed else sol.P0_all[i, j]
+            (line,) = ax.plot(p / scale, curve * scale, lw=1.2 if closed else 0.8, ls=ls, color=color, label=label)
+            ax.plot(p[::step] / scale, sol.P0_all[i, j, ::step] * scale, "o", ms=3, color=line.get_color(), mfc="none")
     handles, _ = ax.get_legend_handles_labels()
     key = [Line2D([], [], color="0.3", marker="o", ls="none", mfc="none", ms=4, label=f"{sol.method} (markers)")]
     if closed:
         key.append(Line2D([], [], color="0.3", lw=1.2, label="exact (lines)"))
-        err = sol.compare().final()
-        title = f"{sol.method}: L1 = {err['L1']:.2e}, |ΔA*| = {err['area_error']:.2e}, {sol.wall_time * 1e3:.1f} ms"
-    elif sol.info.get("error_estimate") is not None:
-        e = sol.error_estimate
-        title = (
-            f"{sol.method} (no closed form): L1 ≈ {float(np.max(e['L1'][-1])):.2e}, |ΔA*| ≈ "
-            f"{float(np.max(e['contact_area'][-1])):.2e} (estimates), {sol.wall_time * 1e3:.1f} ms"
-        )
+    if several and len(idx) > 1:
+        key += [
+            Line2D([], [], color="0.3", ls=styles[(len(idx) - 1 - s) % len(styles)], label=f"ζ = {sol.zeta[i]:.4g}")
+            for s, i in enumerate(idx)
+        ]
+    wall = f"wall time {sol.wall_time * 1e3:.2f} ms"
+    if L1 is None:
+        title = f"{sol.method}: {wall}\nno closed form, no error estimate"
+    elif several:
+        what = "L1 error" if closed else "L1 error estimate (no closed form)"
+        title = f"{sol.method}: {wall}\n{len(jdx)} loads at ζ = {sol.zeta[last]:.4g}, {what} per load in the legend"
     else:
-        title = f"{sol.method} (no closed form, no error estimate), {sol.wall_time * 1e3:.1f} ms"
-    ax.set_title(title, fontsize=10)
+        j = jdx[0]
+        title = (
+            f"{sol.method}: L1 {approx}{L1[last, j]:.2e}, |ΔA*| {approx}{dA[last, j]:.2e} at ζ = {sol.zeta[last]:.4g}"
+            f", {wall}"
+        )
+        if not closed:
+            title += "\nno closed form: the errors are the solver's estimates"
+        if n_l > 1 or pressure_unit is not None:
+            title += "\n" + _load_label(sol.problem.p_bar[j], scale, pressure_unit)
+    # the axis ends where every curve has fallen below 1e-3 of its own peak (the far grid is empty)
+    reach = [
+        float(np.max(x[y > 1e-3 * np.max(y)], initial=0.0))
+        for x, y in ((np.asarray(ln.get_xdata()), np.asarray(ln.get_ydata())) for ln in ax.get_lines())
+    ]
+    right = float(np.max([np.max(line.get_xdata()) for line in ax.get_lines()]))
+    ax.set_xlim(left=min(0.0, ax.get_xlim()[0]), right=min(right, 1.05 * max(reach)) or None)
+    ax.set_title(title, fontsize=9)
     ax.set_xlabel(r"$p/\sqrt{V(\zeta_{max})}$")
     ax.set_ylabel(r"$P_0\,\sqrt{V(\zeta_{max})}$")
     ax.legend(handles=handles + key, fontsize=8)
@@ -202,7 +305,13 @@ def plot_error_vs_time(rows: Sequence[Mapping], ax: Axes | None = None, error_ke
 __all__ += ["plot_psd", "plot_pdf_histogram"]
 
 
-def plot_psd(psds: Mapping, ax: Axes | None = None, n_q: int = 400, mark_cutoffs: bool = True) -> Figure:
+def plot_psd(
+    psds: Mapping,
+    ax: Axes | None = None,
+    n_q: int = 400,
+    mark_cutoffs: bool = True,
+    length_unit: str | None = None,
+) -> Figure:
     """C(q) on log-log axes (Xu et al. tutorial, Fig. A.1).
 
     A tabulated spectrum is drawn at its table points (markers) plus its log-log interpolant; the cut-offs
@@ -218,12 +327,15 @@ def plot_psd(psds: Mapping, ax: Axes | None = None, n_q: int = 400, mark_cutoffs
         Number of wavenumbers per curve.
     mark_cutoffs : bool
         Mark the cut-offs of the first spectrum.
+    length_unit : str, optional
+        Unit of length of the spectra (e.g. ``"m"``: q in rad/m, C in m^4) for the axis labels; None: no unit.
 
     Returns
     -------
     matplotlib.figure.Figure
         The figure drawn on.
     """
+    lu = _unit(length_unit)
     fig, ax = _axes(ax)
     for k, (label, psd) in enumerate(psds.items()):
         q = np.geomspace(psd.q_l, psd.q_s, n_q)
@@ -247,8 +359,9 @@ def plot_psd(psds: Mapping, ax: Axes | None = None, n_q: int = 400, mark_cutoffs
                     fontsize=8,
                     color="0.4",
                 )
-    ax.set_xlabel("q [1/length]")
-    ax.set_ylabel(r"$C(q)$ [length$^4$]")
+    unit = length_unit.strip() if lu else None
+    ax.set_xlabel("wavenumber q" + (f" [rad/{unit}]" if unit else ""))
+    ax.set_ylabel(r"$C(q)$" + (f" [{unit}$^4$]" if unit else ""))
     ax.legend(fontsize=8)
     return fig
 
@@ -414,9 +527,20 @@ def plot_pdf_waterfall(
 __all__ += ["plot_gap_pdf", "plot_leak_rate"]
 
 
-def plot_gap_pdf(gaps, loads: Sequence[int] | None = None, ax: Axes | None = None, n_u: int = 400) -> Figure:
+def plot_gap_pdf(
+    gaps,
+    loads: Sequence[int] | None = None,
+    ax: Axes | None = None,
+    n_u: int = 400,
+    length_unit: str | None = None,
+    pressure_unit: str | None = None,
+) -> Figure:
     r"""The gap distribution P(u) (Almqvist et al., JMPS 59 (2011) 2355) at a few loads, the contact atom
-    :math:`A(\zeta_{max})\delta(u)` at u = 0 drawn as an arrow carrying its weight.
+    :math:`A(\zeta_{max})\delta(u)` at u = 0 drawn as an arrow whose length is its weight times the largest P(u).
+
+    The atoms all sit at u = 0: their arrows are drawn side by side just left of it (in the legend's order), their
+    weights written in a column further left at the arrows' heights (pushed apart where they would overlap) and
+    in the legend entry of their load.
 
     Parameters
     ----------
@@ -427,11 +551,21 @@ def plot_gap_pdf(gaps, loads: Sequence[int] | None = None, ax: Axes | None = Non
     ax : matplotlib.axes.Axes, optional
     n_u : int
         Points in u, from 0 to the largest mean gap plus four standard deviations.
+    length_unit, pressure_unit : str, optional
+        Units of the gaps and of the loads (e.g. ``"m"``, ``"Pa"``) for the axis labels and the legend; None:
+        no unit written.
 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        A unit not None or a non-empty string.
     """
+    lu = _unit(length_unit)
+    _unit(pressure_unit)
     fig, ax = _axes(ax)
     n = gaps.n_loads
     idx = list(loads) if loads is not None else sorted({int(round(k)) for k in np.linspace(0, n - 1, min(n, 4))})
@@ -439,18 +573,42 @@ def plot_gap_pdf(gaps, loads: Sequence[int] | None = None, ax: Axes | None = Non
     u = np.linspace(0.0, float(np.max(mean[idx] + 4.0 * std[idx])) or 1.0, n_u)
     pdf = np.asarray(gaps.pdf(u)).reshape(n, n_u)
     atom = np.atleast_1d(gaps.contact_fraction)
+    p_bar = np.atleast_1d(gaps.p_bar)
     peak = float(np.max(pdf[idx])) or 1.0
     for c, k in enumerate(idx):
-        col = f"C{c}"
-        ax.plot(u, pdf[k], color=col, label=rf"$\bar p$ = {gaps.p_bar[k]:.3g}")
-        if atom[k] > 0:
-            plot_atom(ax, atom[k], max(atom[k], 0.05) * peak, color=col, text=True, fontsize=7)
-    ax.set(xlabel="gap u  [length]", ylabel="P(u)  [1/length]", title="gap distribution (arrows: contact atom A)")
+        label = _load_label(p_bar[k], None, pressure_unit) + f": contact atom A = {atom[k]:.3g}"
+        ax.plot(u, pdf[k], color=f"C{c % 10}", label=label)
+    # the atoms all sit at u = 0: arrows side by side just left of it (legend order), their weights written in a
+    # column further left, each at its arrow's height or pushed up to clear the one below (they smeared when
+    # written beside arrows of equal height)
+    gap = 0.012 * float(u[-1])
+    drawn = [(c, k) for c, k in enumerate(idx) if atom[k] > 0]
+    tops = {k: max(atom[k], 0.05) * peak for _, k in drawn}
+    y_text, below = {}, -np.inf
+    for _, k in sorted(drawn, key=lambda ck: tops[ck[1]]):
+        y_text[k] = below = max(tops[k], below + 0.075 * peak)
+    x_col = -gap * (len(idx) + 1.5)
+    for c, k in drawn:
+        x = -gap * (len(idx) - c)
+        plot_atom(ax, atom[k], tops[k], x=x, color=f"C{c % 10}", text=False)
+        ax.annotate(f"{atom[k]:.3g}", (x_col, y_text[k]), ha="right", va="center", fontsize=7, color=f"C{c % 10}")
+    if drawn:
+        ax.set_xlim(left=x_col - 0.13 * float(u[-1]))
+    ax.axvline(0.0, color="0.6", lw=0.6, ls=":")
+    ax.set(xlabel="gap u" + lu, ylabel="P(u)" + (f" [1/{length_unit.strip()}]" if lu else ""))
+    ax.set_title("gap distribution P(u); arrows: contact atom A at u = 0\n(side by side, length ∝ A)", fontsize=9)
     ax.legend(fontsize=7)
     return fig
 
 
-def plot_leak_rate(p_bar: ArrayLike, curves: Mapping, ax: Axes | None = None) -> Figure:
+def plot_leak_rate(
+    p_bar: ArrayLike,
+    curves: Mapping,
+    ax: Axes | None = None,
+    length_unit: str | None = None,
+    pressure_unit: str | None = None,
+    time_unit: str | None = None,
+) -> Figure:
     """Leak rate Q against the nominal pressure (Lorenz & Persson 2009, 2010), log-log; loads where a curve is 0
     (the seal closed) are marked on the bottom axis.
 
@@ -461,11 +619,20 @@ def plot_leak_rate(p_bar: ArrayLike, curves: Mapping, ax: Axes | None = None) ->
     curves : mapping
         Label -> flow rates Q (length^3/time) at ``p_bar``.
     ax : matplotlib.axes.Axes, optional
+    length_unit, pressure_unit, time_unit : str, optional
+        Units for the axis labels (e.g. ``"m"``, ``"Pa"``, ``"s"``: Q in m^3/s for a viscosity in Pa s); None: no
+        unit written (Q's unit is written when ``length_unit`` is given, per ``time_unit`` or per "time").
 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        A unit not None or a non-empty string.
     """
+    lu, pu, tu = _unit(length_unit), _unit(pressure_unit), _unit(time_unit)
     fig, ax = _axes(ax)
     p = np.asarray(p_bar, dtype=float)
     for c, (label, Q) in enumerate(curves.items()):
@@ -474,6 +641,7 @@ def plot_leak_rate(p_bar: ArrayLike, curves: Mapping, ax: Axes | None = None) ->
         ax.loglog(p[open_], Q[open_], color=f"C{c}", label=label)
         if np.any(~open_):
             ax.plot(p[~open_], np.zeros(np.sum(~open_)), "|", color=f"C{c}", ms=8, transform=ax.get_xaxis_transform())
-    ax.set(xlabel=r"$\bar p$  [pressure]", ylabel="Q  [length$^3$/time]", title="leak rate (ticks: sealed)")
+    q_unit = f" [{length_unit.strip()}$^3$/{time_unit.strip() if tu else 'time'}]" if lu else ""
+    ax.set(xlabel=r"$\bar p$" + pu, ylabel="Q" + q_unit, title="leak rate (ticks: sealed)")
     ax.legend(fontsize=7)
     return fig

@@ -506,19 +506,23 @@ class Solution:
 
         return summary_line(self)
 
-    def plot(self, ax: Axes | None = None, **kwargs: Any) -> Figure:
-        """P0 at every station, against the exact solution where there is one (needs matplotlib).
+    def plot(self, ax: Axes | None = None, pressure_unit: str | None = None, **kwargs: Any) -> Figure:
+        """P0 against the exact solution where there is one, every load (needs matplotlib).
 
-        Draws :func:`persson_fp.plotting.plot_solution` (its first load), in units of sqrt(V(zeta_max)); without a
-        closed form (a moving yield wall, general coefficients) the numerical P0 alone, with the solver's error
-        estimate in the title.
+        Draws :func:`persson_fp.plotting.plot_solution`, p in units of sqrt(V(zeta_max)): one load, a curve per
+        station and its error in the title; several loads, a curve per load (at the last station), each legend
+        entry giving its p_bar (with ``pressure_unit``), p_bar/sqrt(V) and its own L1 error.  Without a closed form
+        (a moving yield wall, general coefficients) the numerical P0 alone, with the solver's error estimates.  The
+        time shown is :attr:`wall_time`, as :meth:`summary` gives it.
 
         Parameters
         ----------
         ax : matplotlib.axes.Axes, optional
             Axes to draw on; default a new figure.
+        pressure_unit : str, optional
+            Unit of the problem's pressures (e.g. ``"Pa"``) for the legend; the problem itself carries no units.
         **kwargs
-            Passed to :func:`~persson_fp.plotting.plot_solution` (``stations``).
+            Passed to :func:`~persson_fp.plotting.plot_solution` (``stations``, ``loads``).
 
         Returns
         -------
@@ -527,7 +531,7 @@ class Solution:
         """
         from persson_fp import plotting
 
-        return plotting.plot_solution(self, ax=ax, **kwargs)
+        return plotting.plot_solution(self, ax=ax, pressure_unit=pressure_unit, **kwargs)
 
     # -- display (compact: never the arrays) -----------------------------------------------------------------
     def _summary_rows(self) -> list:

@@ -11,10 +11,12 @@ Spectrum of a height map (periodic square or rectangle :math:`L_x\times L_y`, :m
 :math:`\hat h_k = N^{-1}\sum h\,e^{-i q_k\cdot x}`, :math:`C(q_k) = \frac{L_xL_y}{(2\pi)^2}|\hat h_k|^2`, so
 that :math:`\langle h^2\rangle = \sum_k C(q_k)\,\Delta^2q` exactly.  Radial averaging
 (:func:`persson_fp.surfaces.annuli.annulus_table`): the band is the data's, from the lowest mode radius
-:math:`2\pi/L` to the highest (the lattice's corner), and the table is fitted so that every annulus of the
-spectrum carries the power of the modes in it; the spectrum therefore carries the map's
-:math:`\langle h^2\rangle` and :math:`\langle|\nabla h|^2\rangle` (within 1 % on periodic self-affine maps with
-and without roll-off, H in [0.2, 0.9]; tests).  Beyond the Nyquist circle the annuli are incomplete; the notes
+:math:`2\pi/L` to the highest that carries power (at most the lattice's corner); the table has one point per
+annulus of modes, their mean C at their mean radius, sorted in q; a lift of the lowest radii (fading out by
+``4 * 2 pi / L``: the cells of the lowest modes reach below :math:`2\pi/L`) and a small tilt make the spectrum
+carry the map's :math:`\langle h^2\rangle` and :math:`\langle|\nabla h|^2\rangle` (to round-off on periodic
+self-affine maps with and without roll-off, H in [0.2, 0.9]; tests); the notes give the lift and the tilt.
+Beyond the Nyquist circle the annuli are incomplete; the notes
 give the share of the moments they carry.  A narrower band is a :class:`~persson_fp.TabulatedPSD` of the same
 table with ``q_l``/``q_s`` inside it.
 
@@ -39,7 +41,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from persson_fp._validate import as_float_array, as_positive_scalar
-from persson_fp.surfaces.annuli import annulus_table, central_difference_slope
+from persson_fp.surfaces.annuli import LOW, annulus_table, central_difference_slope
 from persson_fp.surfaces.tabulated import TabulatedPSD
 
 __all__ = [
@@ -109,27 +111,51 @@ class MeasuredSurface:
         return self.psd.rms_height / self.rms_height_data - 1.0, self.rms_slope_spectrum / self.rms_slope_data - 1.0
 
     def describe(self) -> str:
-        """A few lines for a report or a CSV header: source, convention, rms values, notes.
+        r"""A few lines for a report or a CSV header: source, convention, each rms value named with how it is taken.
+
+        The spectrum's rms height and slope are its integrals over the band :math:`[q_l, q_s]`,
+        :math:`\sqrt{2\pi\int qC\,dq}` and :math:`\sqrt{2\pi\int q^3C\,dq}` (exact derivative).  The height data's
+        rms slope is the spectral derivative of periodic data, or central differences (``numpy.gradient``) of
+        non-periodic data; it is then compared with the spectrum seen through the same differences
+        (:func:`~persson_fp.surfaces.annuli.central_difference_slope`), a third number, which the percentage
+        compares, so each percentage is "spectrum / data - 1" of one definition.
 
         Returns
         -------
         str
-            Lines separated by newlines: the source, the spectrum's input convention and band (rad/length),
-            its rms height (length) and slope, the height data's with their relative differences, the notes.
+            Lines separated by newlines: the source, the spectrum's input convention and band (rad/length), its rms
+            height (length) and slope, the height data's with the definition of each and their relative differences,
+            the notes.
         """
         p = self.psd
+        band = f"over q in [{p.q_l:.6g}, {p.q_s:.6g}]"
         lines = [
             f"source: {self.source}",
             f"spectrum: Persson's isotropic C(q) (<h^2> = 2 pi int q C dq), input convention {p.convention!r}, "
             f"{p.q.size} points, q in [{p.q_l:.6g}, {p.q_s:.6g}] rad/length",
-            f"rms height {p.rms_height:.6g} length, rms slope {p.rms_slope:.6g} (from the spectrum)",
+            f"rms height {p.rms_height:.6g} length, rms slope {p.rms_slope:.6g} (the spectrum's, "
+            f"sqrt(2 pi int q C dq) and sqrt(2 pi int q^3 C dq) (exact derivative) {band})",
         ]
         if self.rms_height_data is not None:
             eh, es = self.rms_errors
             lines.append(
-                f"height data: rms height {self.rms_height_data:.6g} ({eh:+.2%}), "
-                f"rms slope {self.rms_slope_data:.6g} ({es:+.2%}); slopes by {self.slope_definition} on both sides"
+                f"height data: rms height {self.rms_height_data:.6g} length (the detrended heights); "
+                f"spectrum / data - 1 = {eh:+.2%}"
             )
+            if self.grid_step is None:
+                lines.append(
+                    f"height data: rms slope {self.rms_slope_data:.6g} by the spectral derivative of the periodic "
+                    f"heights (sqrt(sum q^2 |h_q|^2)), against the spectrum's {self.rms_slope_spectrum:.6g}: "
+                    f"spectrum / data - 1 = {es:+.2%}"
+                )
+            else:
+                lines.append(
+                    f"height data: rms slope {self.rms_slope_data:.6g} by central differences of the heights "
+                    f"(numpy.gradient), against {self.rms_slope_spectrum:.6g}, the spectrum seen through the same "
+                    f"differences (sqrt(2 pi int q C K dq), K(q) = sum_a (1 - J0(2 q d_a)) / (2 d_a^2)): "
+                    f"spectrum / data - 1 = {es:+.2%}; central differences on both sides, so this slope is below the "
+                    "exact-derivative one"
+                )
         lines.extend(f"note: {n}" for n in self.notes)
         return "\n".join(lines)
 
@@ -350,7 +376,13 @@ def psd_from_heightmap(
     if window and not periodic:
         _calibrate(power, (QX.ravel(), QY.ravel()), (Lx / h.shape[0], Ly / h.shape[1]), rms_h**2, rms_s**2, notes)
     nz = qm > 0
-    q, C = annulus_table(qm[nz], power[nz], (2.0 * np.pi / Lx, 2.0 * np.pi / Ly), bins_per_decade, q_nyq)
+    q, C, (f0, g, F) = annulus_table(qm[nz], power[nz], (2.0 * np.pi / Lx, 2.0 * np.pi / Ly), bins_per_decade, q_nyq)
+    notes.append(
+        f"spectrum: one point per annulus of modes (their mean C at their mean radius), times a lift {f0:.3g} at "
+        f"q = {q[0]:.6g} fading out by {LOW:g} times that q and a tilt (q/q_l)^{g:+.3g}"
+        + ("" if abs(F - 1.0) < 1e-9 else f" and a factor {F:.3g}")
+        + ", so that it carries the data's <h^2> and <|grad h|^2> (the lowest modes' cells reach below q_l)"
+    )
     psd = TabulatedPSD(q, C)
     step = None if periodic else (Lx / h.shape[0], Ly / h.shape[1])
     return _check_rms(MeasuredSurface(psd, source, rms_h, rms_s, tuple(notes), step))
