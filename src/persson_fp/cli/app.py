@@ -1,7 +1,8 @@
 """The ``persson-fp`` command: the parser and the dispatch to one module per subcommand (``report``, ``solve``,
 ``area``, ``surface``, ``sweep``, ``calibrate``, ``friction``; what they share is in ``_problem.py`` and ``_io.py``).
 
-It only wires the package together.  Every error -- a bad argument, an unreadable or unwritable
+It only wires the package together.  Every warning prints once as one line ``persson-fp: warning: ...`` on
+stderr (``_io.one_line_warnings``).  Every error -- a bad argument, an unreadable or unwritable
 file, a solver that refuses a problem or breaks an invariant -- prints one line on stderr and exits
 with code 2; Ctrl-C prints "interrupted" and exits with 130.  Files are written under a temporary
 name and renamed when complete, so an interrupted run leaves no half-written file.
@@ -19,7 +20,7 @@ from persson_fp.cli import calibrate as cli_calibrate
 from persson_fp.cli import friction as cli_friction
 from persson_fp.cli import surface as cli_surface
 from persson_fp.cli import sweep as cli_sweep
-from persson_fp.cli._io import CLIError
+from persson_fp.cli._io import CLIError, one_line_warnings
 from persson_fp.cli._problem import _check_combination
 from persson_fp.results.solution import SolverError
 
@@ -97,8 +98,9 @@ def main(argv=None) -> int:
         args = parser.parse_args(argv)
         if args.command is None:
             args = parser.parse_args(["report"])
-        _check_combination(args)
-        return args.func(args)
+        with one_line_warnings():  # every warning once, as one line "persson-fp: warning: ..."
+            _check_combination(args)
+            return args.func(args)
     except KeyboardInterrupt:
         print("persson-fp: interrupted", file=sys.stderr)
         return 130
