@@ -55,7 +55,7 @@ def test_area_command_csv_matches_exact(tmp_path):
     [
         (["report", "--H", "1.5", "--no-solvers"], "H must lie in"),
         (["report", "--E-star", "-1", "--no-solvers"], "--E-star"),
-        (["report", "--p-bar", "0", "--no-solvers"], "p_bar"),
+        (["report", "--p-bar", "0", "--no-solvers"], "--p-bar must be finite pressures > 0"),
         (["report", "--psd-csv", "/nonexistent.csv", "--no-solvers"], "--psd"),
         (["area", "--ratio-min", "2", "--ratio-max", "1"], "--ratio-min"),
     ],

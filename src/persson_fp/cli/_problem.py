@@ -112,11 +112,14 @@ def _problem(args, fudge=None) -> ContactProblem:
     resolve_units(args)
     if args.p_bar is not None:
         p_bar = np.array(args.p_bar)
+        if not (np.all(np.isfinite(p_bar)) and np.all(p_bar > 0)):
+            got = " ".join(f"{v:g}" for v in p_bar)
+            raise CLIError(f"--p-bar must be finite pressures > 0 (every load), got {got}")
         check_load_vs_modulus(p_bar, args.E_star, args.units)
     else:
         ratio = np.array([0.5] if args.p_bar_ratio is None else args.p_bar_ratio)
         if np.any(~np.isfinite(ratio)) or np.any(ratio <= 0):
-            raise CLIError("--p-bar-ratio must be > 0 and finite")
+            raise CLIError(f"--p-bar-ratio must be > 0 and finite, got {' '.join(f'{v:g}' for v in ratio)}")
         p_bar = ratio * np.sqrt(ContactProblem(psd, args.E_star, 1.0).V_max)  # (checks V's range first)
     return ContactProblem(psd, args.E_star, p_bar[0] if p_bar.size == 1 else p_bar, f)
 

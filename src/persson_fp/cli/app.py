@@ -30,7 +30,9 @@ persson-fp: Persson's theory of elastic rough-surface contact as a diffusion (Fo
 The contact-pressure PDF P0(p, zeta) obeys dP0/dzeta = 1/2 B2 d2P0/dp2 with an absorbing wall at p = 0;
 B2 = S(A*) dV/dzeta, S = 1 in Persson's original theory.  The default surface is the reference problem:
 self-affine, H = 0.8, q_l = 1, q_r = 2, q_s = 128 (zeta_max = 128), rms slope 0.1, E* = 1,
-p_bar = 0.5 sqrt(V(zeta_max)).  Units: any consistent set (the defaults are dimensionless).
+p_bar = 0.5 sqrt(V(zeta_max)).  Units: SI unless --units none (lengths in m, pressures in Pa; said once on
+stdout); every CSV header carries its unit in brackets, e.g. "p_bar [Pa]", "u_YP08 [m]".  Existing outputs are
+refused unless --force; warnings print once each, one line "persson-fp: warning: ...", on stderr.
 
 commands:
   report   (default) table of V, A*, Var(p), elastic energy for every fudge model, persson-fp's own
@@ -49,9 +51,9 @@ examples:
   persson-fp
   persson-fp report --H 0.3 --zeta-max 1000 --output results/
   persson-fp solve --method fv --p-bar-ratio 0.1 0.5 2 --fudge YP08 --output sol.csv
-  persson-fp solve --psd-csv my_psd.csv --E-star 2.1e11 --p-bar 1e6 --method sines
+  persson-fp solve --psd my_psd.csv --E-star 2.1e11 --p-bar 1e6 --method sines
   persson-fp area --n-loads 200 --output area/
-  persson-fp surface heights.npy --size 1e-3 --E-star 2.1e11 --output surf/
+  persson-fp surface heights.npy --size 1e-3 --E-star 2.1e11 --p-bar 1e5 --viscosity 1e-3 --pressure-drop 1e5
   persson-fp calibrate data.csv --psd psd.csv --model YP08 WM17 Xu24
   persson-fp friction --master-curve mc.csv --wlf 8.86 101.6 --T-ref 20 --psd road.csv --p-bar 2e5
 

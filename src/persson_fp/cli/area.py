@@ -32,7 +32,10 @@ def cmd_area(args) -> int:
     from persson_fp import plotting
 
     if not (0 < args.ratio_min < args.ratio_max) or not np.isfinite(args.ratio_max):
-        raise CLIError("--ratio-min and --ratio-max must satisfy 0 < min < max")
+        raise CLIError(
+            f"--ratio-min and --ratio-max must satisfy 0 < min < max (finite), got {args.ratio_min:g} and "
+            f"{args.ratio_max:g}"
+        )
     if not 2 <= args.n_loads <= MAX_LOADS:
         raise CLIError(f"--n-loads must lie in [2, {MAX_LOADS}], got {args.n_loads}")
     for flag, value in (("--p-bar", args.p_bar), ("--p-bar-ratio", args.p_bar_ratio), ("--gamma", args.gamma)):
@@ -78,8 +81,22 @@ def add_parser(sub) -> None:
     ar = sub.add_parser("area", help="A*(p_bar) curves for every fudge model (exact)")
     _add_problem_args(ar)
     ar.add_argument("--n-loads", type=_count, default=1000, help="number of loads (default 1000)")
-    ar.add_argument("--ratio-min", type=float, default=1e-3, help="smallest p_bar/sqrt(V) (default 1e-3)")
-    ar.add_argument("--ratio-max", type=float, default=3.0, help="largest p_bar/sqrt(V) (default 3)")
+    ar.add_argument(
+        "--p-bar-ratio-min",
+        "--ratio-min",
+        dest="ratio_min",
+        type=float,
+        default=1e-3,
+        help="smallest p_bar/sqrt(V) (default 1e-3)",
+    )
+    ar.add_argument(
+        "--p-bar-ratio-max",
+        "--ratio-max",
+        dest="ratio_max",
+        type=float,
+        default=3.0,
+        help="largest p_bar/sqrt(V) (default 3)",
+    )
     ar.add_argument("--output", default="persson-fp-output", help="folder for contact_area.csv / .png")
     ar.add_argument("--force", action="store_true", help="replace existing contact_area.csv / contact_area.png")
     ar.set_defaults(func=cmd_area)

@@ -11,7 +11,7 @@ import numpy as np
 from persson_fp._version import __version__
 from persson_fp.analysis.energy import elastic_energy
 from persson_fp.analysis.exact import exact
-from persson_fp.cli._io import _atomic_open, _check_new_files, _save_figure
+from persson_fp.cli._io import _atomic_open, _check_new_files, _save_figure, unit
 from persson_fp.cli._problem import (
     FUDGES,
     _add_problem_args,
@@ -36,10 +36,15 @@ def cmd_report(args) -> int:
     V = float(base.V())
     print(f"persson-fp {__version__} -- report")
     print(f"surface: {psd!r}")
-    print(f"E* = {base.E_star:.6g}, zeta_max = {base.zeta_max:.6g}, V(zeta_max) = {V:.6e}, sqrt(V) = {np.sqrt(V):.6e}")
-    print(f"rms slope = {psd.rms_slope:.6g}, rms height = {psd.rms_height:.6g}")
+    P, L = unit("pressure", args.units), unit("length", args.units)
+    print(
+        f"E* = {base.E_star:.6g} {P}, zeta_max = {base.zeta_max:.6g}, V(zeta_max) = {V:.6e} {P}^2, "
+        f"sqrt(V) = {np.sqrt(V):.6e} {P}"
+    )
+    print(f"rms slope = {psd.rms_slope:.6g}, rms height = {psd.rms_height:.6g} {L}")
     print()
-    header = f"{'fudge':<6} {'p_bar':>11} {'p_bar/sqrtV':>11} {'A*':>12} {'Var(p)':>12} {'U_el/A_n':>12} {'tau/V':>9}"
+    pu = f"p_bar [{unit('pressure', args.units)}]"
+    header = f"{'fudge':<6} {pu:>11} {'p_bar/sqrtV':>11} {'A*':>12} {'Var(p)':>12} {'U_el/A_n':>12} {'tau/V':>9}"
     print("Exact solution at zeta_max (eq:Area_Persson, eq:variance_p_form1, eq:Uel_original):")
     print(header)
     print("-" * len(header))
@@ -88,10 +93,9 @@ def cmd_report(args) -> int:
                 f"{r['first'] * 1e3:11.3g} {r['L1']:10.2e} {r['area_error']:10.2e} {r['load_drift']:10.2e}"
             )
         if rows:
-            print(
-                f"wall: median of {min(r['n_warm'] for r in rows)}-{max(r['n_warm'] for r in rows)} warm calls; first: "
-                "the first call (imports, compilation, caches) apart"
-            )
+            n = sorted({r["n_warm"] for r in rows})
+            n_txt = f"{n[0]}" if len(n) == 1 else f"{n[0]} to {n[-1]}"
+            print(f"wall: median of {n_txt} warm calls; first: the first call (imports, compilation, caches) apart")
         with _atomic_open(os.path.join(out, "solvers.csv"), "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(list(_CSV_COLUMNS))

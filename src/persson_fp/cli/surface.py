@@ -274,12 +274,15 @@ def cmd_surface(args) -> int:
         except ValueError as e:
             raise ValueError(f"{_largest_load_flag(args)} reaches too far into full contact: {e}") from None
         law[name] = ms.small_load_law()
-        gd[name], Q_cj[name], Q_em[name] = _interface(psd, E, p_bar, f, args)  # Q per unit pressure drop / viscosity
+        # the gaps and leak rates (Q per unit pressure drop / viscosity) at the figure's loads for its model only
+        on = p_bar if name == GAP_MODEL else p_req
+        gd[name], Q_cj[name], Q_em[name] = _interface(psd, E, on, f, args)
         gaps[name] = np.atleast_1d(gd[name].mean)
-        C[name] = 2.0 * K[name] / E  # Barber: C (rho1 + rho2) = 2K/E*
     wall = time.perf_counter() - t0
     fig_data = (p_bar, A, u, K, gd[GAP_MODEL], Q_cj[GAP_MODEL], Q_em[GAP_MODEL])
-    A, u, K, gaps, Q_cj, Q_em, C = ({n: d[n][sel] for n in FUDGES} for d in (A, u, K, gaps, Q_cj, Q_em, C))
+    A, u, K = ({n: d[n][sel] for n in FUDGES} for d in (A, u, K))
+    gaps, Q_cj, Q_em = ({n: d[n][sel] if n == GAP_MODEL else d[n] for n in FUDGES} for d in (gaps, Q_cj, Q_em))
+    C = {n: 2.0 * K[n] / E for n in FUDGES}  # Barber: C (rho1 + rho2) = 2K/E*
     p_bar = p_req
     with np.errstate(over="ignore"):
         finite = all(np.all(np.isfinite(Q[n] * scale)) for Q in (Q_cj, Q_em) for n in FUDGES)
@@ -337,7 +340,7 @@ def cmd_surface(args) -> int:
     return 0
 
 
-FIGURE_LOADS = 40
+FIGURE_LOADS = 24
 """Fewer loads than this: the figure's curves are drawn over p_bar/sqrt(V) = 1e-3..3 and the loads marked on them."""
 
 MAX_PRINTED = 12

@@ -105,6 +105,9 @@ def cmd_sweep(args) -> int:
         raise ValueError(f"--workers must be >= 1, got {args.workers}")
     if args.p_bar is not None and args.p_bar_ratio is not None:
         raise ValueError("--p-bar and --p-bar-ratio: give the loads one way")
+    for flag, x in (("--p-bar", args.p_bar), ("--p-bar-ratio", args.p_bar_ratio)):
+        if x is not None and not (np.all(np.isfinite(x)) and np.all(np.array(x) > 0)):
+            raise ValueError(f"{flag} must be finite numbers > 0, got {' '.join(f'{v:g}' for v in x)}")
     if args.p_bar is not None:
         loads, relative = np.array(args.p_bar), False
         check_load_vs_modulus(loads, args.E_star)
