@@ -49,12 +49,13 @@ def add_parser(sub):
     s = sub.add_parser(
         "surface",
         help="measured surface -> A*, mean separation, stiffness, gaps and leak rate (CSV + PNG)",
-        description=__doc__.split("\n\n")[0],
+        description="A measured surface (height map or contact.engineering CSV) -> spectrum, contact area A*, mean "
+        "separation u, stiffness K, gap distribution and leak rate, for every fudge model (CSV + PNG).",
         epilog=EPILOG,
         formatter_class=__import__("argparse").RawDescriptionHelpFormatter,
     )
     s.add_argument("file", help="height map (.npy, or text: whitespace/comma separated) or contact.engineering CSV")
-    s.add_argument("--size", type=float, nargs="+", default=None, help="physical size Lx [Ly] of a height map, length")
+    s.add_argument("--size", type=float, nargs="+", default=None, help="physical size Lx [Ly] of a height map (m)")
     s.add_argument("--periodic", action="store_true", help="the height map is periodic (no detrending, no window)")
     s.add_argument(
         "--trust-units",
