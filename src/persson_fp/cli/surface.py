@@ -259,7 +259,8 @@ def cmd_surface(args) -> int:
     leak = flow[0] is not None
     scale = flow[1] / flow[0] if leak else 1.0  # Q is linear in pressure_drop / viscosity
     p_req, sel = p_bar, slice(None)
-    if p_bar.size < FIGURE_LOADS:  # a few loads: the figure's curves span the default range, the loads marked on them
+    listed = args.p_bar is not None or args.p_bar_ratio is not None
+    if listed and p_bar.size < FIGURE_LOADS:  # a few loads: the figure's curves span the default range, loads marked
         p_bar = np.union1d(p_req, sV * np.geomspace(1e-3, 3.0, FIGURE_LOADS))
         sel = np.searchsorted(p_bar, p_req)
     t0 = time.perf_counter()
@@ -342,7 +343,8 @@ def cmd_surface(args) -> int:
 
 
 FIGURE_LOADS = 24
-"""Fewer loads than this: the figure's curves are drawn over p_bar/sqrt(V) = 1e-3..3 and the loads marked on them."""
+"""Fewer loads than this given as a list (--p-bar, --p-bar-ratio): the figure's curves are drawn over
+p_bar/sqrt(V) = 1e-3..3 (and the loads) and the loads asked for marked on them."""
 
 MAX_PRINTED = 12
 """Up to this many loads, the results are also printed as a table."""
