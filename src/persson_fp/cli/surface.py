@@ -152,9 +152,9 @@ def _warn_slope(surf, args):
         return surf
     where = f"the height map with --size {' '.join(f'{v:g}' for v in args.size)}" if args.size else "the spectrum"
     if slope > hi:
-        why = "heights in a unit larger than --size's (e.g. micrometres with a size in millimetres x 1e3)"
+        why = "the heights in a larger unit than --size (heights in um with --size in mm: slopes 1e3 too steep)"
     else:
-        why = "heights in a unit smaller than --size's (e.g. nanometres with a size in micrometres x 1e-3)"
+        why = "the heights in a smaller unit than --size (heights in nm with --size in um: slopes 1e3 too flat)"
     if not args.size:
         why = "q and C in different length units (e.g. q in 1/um with C in m^4)"
     warn(
