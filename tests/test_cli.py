@@ -41,10 +41,12 @@ def test_area_command_csv_matches_exact(tmp_path):
     rows = list(csv.DictReader(open(tmp_path / "contact_area.csv")))
     assert len(rows) == 50
     psd = pf.SelfAffinePSD.from_rms_slope(0.1, 0.3, 1.0, 2.0, 128.0)
-    p_bar = np.array([float(r["p_bar"]) for r in rows])
+    p_bar = np.array([float(r["p_bar [Pa]"]) for r in rows])  # SI assumed (said once on stdout)
     for name in ("none", "YP08"):
         A = pf.exact(pf.ContactProblem(psd, 1.0, p_bar, None if name == "none" else name)).contact_area
-        np.testing.assert_allclose([float(r[f"A_{name}"]) for r in rows], A, rtol=1e-10)  # p_bar printed to 12 digits
+        np.testing.assert_allclose(
+            [float(r[f"A_{name} [-]"]) for r in rows], A, rtol=1e-10
+        )  # p_bar printed to 12 digits
     assert (tmp_path / "contact_area.png").exists()
 
 
@@ -53,8 +55,8 @@ def test_area_command_csv_matches_exact(tmp_path):
     [
         (["report", "--H", "1.5", "--no-solvers"], "H must lie in"),
         (["report", "--E-star", "-1", "--no-solvers"], "--E-star"),
-        (["report", "--p-bar", "0", "--no-solvers"], "p_bar"),
-        (["report", "--psd-csv", "/nonexistent.csv", "--no-solvers"], "--psd-csv"),
+        (["report", "--p-bar", "0", "--no-solvers"], "--p-bar must be finite pressures > 0"),
+        (["report", "--psd-csv", "/nonexistent.csv", "--no-solvers"], "--psd"),
         (["area", "--ratio-min", "2", "--ratio-max", "1"], "--ratio-min"),
     ],
 )

@@ -39,7 +39,7 @@ CASES = {
     "plot under a file": (lambda t, f: ["solve", "--method", "sines", "--plot", str(f / "x.png")], "not a folder"),
     "report into a file": (lambda t, f: ["report", "--no-solvers", "--output", str(f)], "not a folder"),
     "area into a file": (lambda t, f: ["area", "--n-loads", "5", "--output", str(f)], "not a folder"),
-    "psd-csv folder": (lambda t, f: ["solve", "--psd-csv", str(t)], "--psd-csv: is a directory"),
+    "psd-csv folder": (lambda t, f: ["solve", "--psd-csv", str(t)], "--psd: is a directory"),
     "psd-csv missing": (lambda t, f: ["solve", "--psd-csv", str(t / "none.csv")], "no such file"),
     # numbers out of range
     "q-l 1e-300": (lambda t, f: ["solve", "--method", "sines", "--q-l", "1e-300"], "floating-point range"),
@@ -51,7 +51,7 @@ CASES = {
     "n-loads huge": (lambda t, f: ["area", "--n-loads", "100000000", "--output", str(t)], "--n-loads"),
     "bad gamma": (lambda t, f: ["solve", "--fudge", "YP08", "--gamma", "2"], "gamma"),
     # options that would be ignored
-    "H with psd-csv": (lambda t, f: ["solve", "--psd-csv", str(f), "--H", "0.3"], "--H: not used with --psd-csv"),
+    "H with psd-csv": (lambda t, f: ["solve", "--psd-csv", str(f), "--H", "0.3"], "--H: not used with --psd"),
     "slope with psd-csv": (lambda t, f: ["solve", "--psd-csv", str(f), "--rms-slope", "0.2"], "--rms-slope"),
     "gamma without fudge": (lambda t, f: ["solve", "--gamma", "0.4"], "--gamma: not used with --fudge none"),
     "p-bar with area": (lambda t, f: ["area", "--p-bar", "1", "--output", str(t)], "--p-bar: not used by 'area'"),
@@ -110,11 +110,15 @@ def test_existing_output_needs_force(tmp_path, capsys):
     np.testing.assert_allclose(P, ex.pdf(p), rtol=0, atol=1e-8 * P.max())  # sines: point values to ~1e-12
 
 
-def test_folder_outputs_say_when_they_replace(tmp_path, capsys):
+def test_folder_outputs_are_refused_without_force(tmp_path, capsys):
+    """A second run into the same folder is refused (one line, exit 2, the file untouched); --force replaces."""
     assert main(["area", "--n-loads", "5", "--output", str(tmp_path)]) == 0
     capsys.readouterr()
-    assert main(["area", "--n-loads", "5", "--output", str(tmp_path)]) == 0
-    assert "replacing existing contact_area.csv" in capsys.readouterr().err
+    before = (tmp_path / "contact_area.csv").read_text()
+    _one_line_error(capsys, main(["area", "--n-loads", "6", "--output", str(tmp_path)]), "--force")
+    assert (tmp_path / "contact_area.csv").read_text() == before
+    assert main(["area", "--n-loads", "6", "--output", str(tmp_path), "--force"]) == 0
+    assert len((tmp_path / "contact_area.csv").read_text().splitlines()) == 7
 
 
 def test_ctrl_c_is_interrupted_130_and_leaves_no_partial_file(tmp_path, monkeypatch, capsys):

@@ -52,12 +52,12 @@ def test_surface_command_height_map(tmp_path, capsys):
     assert any("units:" in ln for ln in header) and any("source: height map" in ln for ln in header)
     # the CSV's numbers are the library's on the imported spectrum (12 printed digits)
     psd = pf.psd_from_heightmap(h, 1.0, periodic=True).psd
-    p = data[:, cols.index("p_bar")]
+    p = data[:, cols.index("p_bar [Pa]")]
     ms = pf.MeanSeparation(psd, 1.0, "YP08")
-    np.testing.assert_allclose(data[:, cols.index("u_YP08")], ms.mean_separation(p), rtol=1e-10)
-    np.testing.assert_allclose(data[:, cols.index("K_none")], pf.MeanSeparation(psd).stiffness(p), rtol=1e-10)
+    np.testing.assert_allclose(data[:, cols.index("u_YP08 [m]")], ms.mean_separation(p), rtol=1e-10)
+    np.testing.assert_allclose(data[:, cols.index("K_none [Pa/m]")], pf.MeanSeparation(psd).stiffness(p), rtol=1e-10)
     A = pf.exact(pf.ContactProblem(psd, 1.0, p, "WM17")).contact_area
-    np.testing.assert_allclose(data[:, cols.index("A_WM17")], A, rtol=1e-10)
+    np.testing.assert_allclose(data[:, cols.index("A_WM17 [-]")], A, rtol=1e-10)
     assert (tmp_path / "o" / "surface.png").stat().st_size > 1000
 
 
@@ -104,7 +104,7 @@ def test_surface_csv_is_read_by_plain_pandas(tmp_path):
     assert main(["surface", str(tmp_path / "h.npy"), "--size", "1", "--periodic", "--n-loads", "5",
                  "--output", str(tmp_path / "o")]) == 0  # fmt: skip
     df = pd.read_csv(tmp_path / "o" / "surface.csv")
-    assert len(df) == 5 and {"p_bar", "A_WM17", "u_YP08", "K_none", "Q_em_Xu24"} <= set(df.columns)
+    assert len(df) == 5 and {"p_bar [Pa]", "A_WM17 [-]", "u_YP08 [m]", "K_none [Pa/m]"} <= set(df.columns)
     assert json.load(open(tmp_path / "o" / "surface.json"))["E_star"] > 0
 
 
@@ -126,7 +126,7 @@ def test_surface_png_has_the_gap_panels(tmp_path):
     A = {n: pf.exact(pf.ContactProblem(psd, 1.0, p)).contact_area for n in ("none", "YP08", "WM17", "Xu24")}
     u = {n: ms.mean_separation(p) for n in A}
     K = {n: ms.stiffness(p) for n in A}
-    fig = _figure(psd, ratio, p, A, u, K, "test", gd, Q_cj, Q_em)
+    fig = _figure(psd, sV, (p, A, u, K, gd, Q_cj, Q_em), slice(None), "test", "SI", (1.0, (1.0, 1.0)))
     axes = fig.get_axes()
     assert len(axes) == 6
     gap_ax = next(a for a in axes if a.get_title().startswith("gap distribution P(u)"))
@@ -159,10 +159,10 @@ def test_surface_png_has_the_gap_panels(tmp_path):
         (None, ["--size", "1e-300"], "--size 1e-300"),
         (None, ["--E-star", "1e308"], "--E-star"),
         (None, ["--E-star", "1e-308"], "--E-star"),
-        (None, ["--ratio-max", "1e6"], "--ratio-max"),
-        (None, ["--viscosity", "nan"], "--viscosity"),
-        (None, ["--pressure-drop", "-1"], "--pressure-drop"),
-        (None, ["--viscosity", "1e-308", "--size", "1e-3"], "rescale the units"),
+        (None, ["--ratio-max", "1e6"], "--p-bar-ratio-max 1e+06"),
+        (None, ["--viscosity", "nan", "--pressure-drop", "1"], "--viscosity"),
+        (None, ["--pressure-drop", "-1", "--viscosity", "1"], "--pressure-drop"),
+        (None, ["--viscosity", "1e-308", "--pressure-drop", "1", "--size", "1e-3"], "rescale the units"),
     ],
 )
 def test_surface_command_fuzzed_files_and_options_are_one_line_errors(tmp_path, capsys, content, extra, message):

@@ -327,13 +327,14 @@ def test_surface_command_writes_gaps_leak_rate_and_conductance(tmp_path, capsys)
     rows = [ln.split(",") for ln in lines if not ln.startswith("#")]
     cols, data = rows[0], np.array(rows[1:], dtype=float)
     psd = pf.psd_from_heightmap(h, 1.0, periodic=True).psd
-    problem = pf.ContactProblem(psd, 1.0, data[:, cols.index("p_bar")], fudge="WM17")
+    problem = pf.ContactProblem(psd, 1.0, data[:, cols.index("p_bar [Pa]")], fudge="WM17")
     Q = pf.leak_rate(problem, viscosity=2.0, pressure_drop=3.0)
-    np.testing.assert_allclose(data[:, cols.index("Q_cj_WM17")], Q, rtol=1e-10)
-    np.testing.assert_allclose(data[:, cols.index("gap_mean_WM17")], pf.gap_distribution(problem).mean, rtol=1e-10)
+    np.testing.assert_allclose(data[:, cols.index("Q_cj_WM17 [m^3/s]")], Q, rtol=1e-10)
+    gap = pf.gap_distribution(problem).mean
+    np.testing.assert_allclose(data[:, cols.index("gap_mean_WM17 [m]")], gap, rtol=1e-10)
     K = pf.contact_stiffness(problem)
-    np.testing.assert_allclose(data[:, cols.index("C_rho_WM17")], 2 * K, rtol=1e-10)
-    assert main(args + ["--viscosity", "0", "--output", str(tmp_path / "p")]) == 2
+    np.testing.assert_allclose(data[:, cols.index("C_rho_WM17 [1/m]")], 2 * K, rtol=1e-10)
+    assert main(args + ["--viscosity", "0", "--pressure-drop", "1", "--output", str(tmp_path / "p")]) == 2
     assert "--viscosity must be" in capsys.readouterr().err
 
 

@@ -1,8 +1,11 @@
-"""File output of the ``persson-fp`` command: atomic writes, folders, replacement notes.
+"""What every subcommand of ``persson-fp`` shares: atomic file output, the ``--force`` rule, units in headers and
+labels, case-insensitive names and one-line warnings.
 
 A file is written under a temporary name in its folder and renamed when complete, so that an
 interrupted or failed run leaves no partial file; problems with paths are :class:`CLIError` (one
-line, exit code 2).
+line, exit code 2).  An output that exists is refused (one line, exit code 2) unless ``--force``.
+Warnings, the library's and the command's own, are printed once each as one line on stderr at the end of a run,
+``persson-fp: warning: ...`` (:func:`one_line_warnings`, used by :func:`persson_fp.cli.app.main`).
 """
 
 from __future__ import annotations
@@ -12,6 +15,7 @@ import contextlib
 import os
 import sys
 import tempfile
+import warnings
 
 import numpy as np
 
@@ -97,11 +101,137 @@ def _check_new_file(path, force: bool, option: str):
         raise CLIError(f"{option}: {path} exists; pass --force to replace it")
 
 
-def _note_replaced(folder, names):
-    """Say which of ``names`` in ``folder`` already exist (they are replaced)."""
+def _check_new_files(folder, names, force: bool, option: str = "--output"):
+    """Refuse to replace any of ``names`` in ``folder`` unless ``--force`` (before any work is done)."""
     old = [n for n in names if os.path.isfile(os.path.join(folder, n))]
-    if old:
-        print(f"note: replacing existing {', '.join(old)} in {folder}", file=sys.stderr)
+    if old and not force:
+        them = "it" if len(old) == 1 else "them"
+        raise CLIError(f"{option}: {', '.join(old)} exist{'s' if len(old) == 1 else ''} in {folder}; pass --force "
+                       f"to replace {them}")  # fmt: skip
+
+
+# -- units ---------------------------------------------------------------------------------------------
+
+UNIT_SYSTEMS = ("SI", "none")
+"""``--units``: SI (lengths in m, pressures in Pa, times in s) or none (any consistent set, dimensions named)."""
+
+_UNITS = {
+    "SI": {
+        "-": "-", "length": "m", "pressure": "Pa", "stiffness": "Pa/m", "wavenumber": "rad/m", "psd": "m^4",
+        "1/length": "1/m", "1/pressure": "1/Pa", "flow": "m^3/s", "flow/(dp/eta)": "m^3", "viscosity": "Pa s",
+        "ms": "ms",
+    },
+    "none": {
+        "-": "-", "length": "length", "pressure": "pressure", "stiffness": "pressure/length",
+        "wavenumber": "rad/length", "psd": "length^4", "1/length": "1/length", "1/pressure": "1/pressure",
+        "flow": "length^3/time", "flow/(dp/eta)": "length^3", "viscosity": "pressure time", "ms": "ms",
+    },
+}  # fmt: skip
+
+
+def unit(kind: str, units: str) -> str:
+    """The unit of a quantity of dimension ``kind`` ("length", "pressure", ...) in the system ``units``."""
+    return _UNITS[units][kind]
+
+
+def col(name: str, kind: str, units: str) -> str:
+    """A CSV column header with its unit in brackets: ``col("p_bar", "pressure", "SI") == "p_bar [Pa]"``."""
+    return f"{name} [{unit(kind, units)}]"
+
+
+def add_units_arg(p):
+    """``--units SI|none`` (case-insensitive; default: SI, said once on stdout)."""
+    p.add_argument(
+        "--units",
+        type=choice(UNIT_SYSTEMS),
+        default=None,
+        help="SI (default: lengths in m, pressures in Pa; said once) or none (dimensionless input: headers and "
+        "labels name the dimension, [length], [pressure])",
+    )
+
+
+def resolve_units(args) -> str:
+    """The unit system of the run; when ``--units`` was not given, SI is assumed and said once on stdout."""
+    if getattr(args, "units", None) is None:
+        args.units = "SI"
+        print("units: SI assumed (lengths in m, pressures in Pa; --units none for dimensionless input)")
+    return args.units
+
+
+# -- names ---------------------------------------------------------------------------------------------
+
+
+def choice(names, what: str = "choose from"):
+    """An argparse ``type`` accepting any of ``names`` in any letter case, returned in their canonical spelling
+    (``--fudge yp08`` is ``YP08``); anything else is refused with the list."""
+    table = {n.lower(): n for n in names}
+
+    def convert(text: str) -> str:
+        try:
+            return table[text.lower()]
+        except KeyError:
+            raise argparse.ArgumentTypeError(f"invalid choice: {text!r} ({what} {', '.join(names)})") from None
+
+    convert.__name__ = "name"
+    return convert
+
+
+# -- warnings ------------------------------------------------------------------------------------------
+
+WARNING_PREFIX = "persson-fp: warning: "
+
+
+class CLIWarning(UserWarning):
+    """A plausibility warning of the command itself (printed like the library's)."""
+
+
+_SUPERSEDED = {"load-vs-modulus": ("p_bar / E_star",)}
+"""Library warnings that say again what a command's own warning (the key) already said: not printed after it."""
+
+
+@contextlib.contextmanager
+def one_line_warnings(stream=None):
+    """Collect every warning raised inside and, when the block completes, print each message once as one line
+    ``persson-fp: warning: MESSAGE`` on stderr (no file names, no source lines).  A block that raises prints none:
+    the error line is then the whole of stderr."""
+    lines: list[str] = []
+    said: set[str] = set()
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        text = " ".join(str(message).split())
+        key = getattr(message, "key", None)
+        if key:
+            said.add(key)
+        if text in lines or any(s in text for k in said for s in _SUPERSEDED.get(k, ())):
+            return
+        lines.append(text)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")
+        warnings.showwarning = show
+        yield
+    for text in lines:
+        print(WARNING_PREFIX + text, file=stream or sys.stderr)
+
+
+def warn(message: str, key: str | None = None) -> None:
+    """A warning of the command (one line on stderr through :func:`one_line_warnings`); ``key`` names its topic,
+    after which the library's warnings on the same topic are not repeated."""
+    w = CLIWarning(message)
+    w.key = key
+    warnings.warn(w, stacklevel=2)
+
+
+def check_load_vs_modulus(p_bar, E_star, units: str = "SI") -> None:
+    """Warn (one line) when a load reaches the contact modulus: small-slope contact has p_bar << E*."""
+    pmax = float(np.max(p_bar))
+    if np.isfinite(pmax) and np.isfinite(E_star) and E_star > 0 and pmax >= E_star:
+        u = unit("pressure", units)
+        warn(
+            f"--p-bar {pmax:g} {u} >= --E-star {E_star:g} {u}: the nominal pressure reaches the contact modulus "
+            "(small-slope contact needs p_bar << E*); are they in the same unit (E* in MPa or GPa with p_bar in Pa?)",
+            key="load-vs-modulus",
+        )
 
 
 def _count(text: str) -> int:

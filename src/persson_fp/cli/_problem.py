@@ -9,9 +9,7 @@ import sys
 
 import numpy as np
 
-from persson_fp.cli._io import (
-    CLIError,
-)
+from persson_fp.cli._io import CLIError, add_units_arg, check_load_vs_modulus, choice, resolve_units
 from persson_fp.problems.contact import ContactProblem
 from persson_fp.surfaces.psd import SelfAffinePSD
 from persson_fp.surfaces.tabulated import TabulatedPSD
@@ -53,7 +51,9 @@ def _add_problem_args(p: argparse.ArgumentParser):
     amp.add_argument("--rms-slope", type=float, default=None, help="rms slope over the band (default 0.1)")
     amp.add_argument("--rms-height", type=float, default=None, help="rms height over the band, length")
     amp.add_argument("--C0", type=float, default=None, help="PSD prefactor C0, length^(2-2H)")
-    g.add_argument("--psd-csv", default=None, help="measured isotropic PSD: CSV with header columns q,C")
+    g.add_argument(
+        "--psd", "--psd-csv", dest="psd_csv", default=None, help="measured isotropic PSD: CSV with header columns q,C"
+    )
     m = p.add_argument_group("contact")
     m.add_argument("--E-star", type=float, default=1.0, help="plane-strain modulus E/(1-nu^2), pressure (default 1)")
     lo = m.add_mutually_exclusive_group()
@@ -61,8 +61,11 @@ def _add_problem_args(p: argparse.ArgumentParser):
     lo.add_argument(
         "--p-bar-ratio", type=float, nargs="+", default=None, help="load(s) as p_bar / sqrt(V(zeta_max)) (default 0.5)"
     )
-    m.add_argument("--fudge", default="none", choices=FUDGES, help="fudge factor S(A*) (default none)")
+    m.add_argument(
+        "--fudge", default="none", type=choice(FUDGES), help="fudge factor S(A*): none, YP08, WM17, Xu24 (any case)"
+    )
     m.add_argument("--gamma", type=float, default=None, help="gamma of the fudge model (default: the model's)")
+    add_units_arg(m)
 
 
 _SURFACE_OPTIONS = ("H", "q_l", "q_r", "zeta_max", "rms_slope", "rms_height", "C0")
@@ -76,7 +79,7 @@ def _check_combination(args):
         given = [o for o in _SURFACE_OPTIONS if getattr(args, o) is not None]
         if given:
             flags = ", ".join("--" + o.replace("_", "-") for o in given)
-            raise CLIError(f"{flags}: not used with --psd-csv (the measured spectrum fixes the surface)")
+            raise CLIError(f"{flags}: not used with --psd (the measured spectrum fixes the surface)")
     if args.gamma is not None and args.fudge == "none" and args.command == "solve":
         raise CLIError("--gamma: not used with --fudge none (choose YP08, WM17 or Xu24)")
 
@@ -85,7 +88,7 @@ def _problem(args, fudge=None) -> ContactProblem:
     if args.psd_csv:
         if not os.path.isfile(args.psd_csv):
             what = "is a directory" if os.path.isdir(args.psd_csv) else "no such file"
-            raise CLIError(f"--psd-csv: {what}: {args.psd_csv!r}")
+            raise CLIError(f"--psd: {what}: {args.psd_csv!r}")
         psd = TabulatedPSD.from_csv(args.psd_csv)
     else:
         H = SURFACE_DEFAULTS["H"] if args.H is None else args.H
@@ -106,12 +109,17 @@ def _problem(args, fudge=None) -> ContactProblem:
     if name != "none":
         cls = _fudge.MODELS[name]
         f = cls() if args.gamma is None else cls(gamma=args.gamma)
+    resolve_units(args)
     if args.p_bar is not None:
         p_bar = np.array(args.p_bar)
+        if not (np.all(np.isfinite(p_bar)) and np.all(p_bar > 0)):
+            got = " ".join(f"{v:g}" for v in p_bar)
+            raise CLIError(f"--p-bar must be finite pressures > 0 (every load), got {got}")
+        check_load_vs_modulus(p_bar, args.E_star, args.units)
     else:
         ratio = np.array([0.5] if args.p_bar_ratio is None else args.p_bar_ratio)
         if np.any(~np.isfinite(ratio)) or np.any(ratio <= 0):
-            raise CLIError("--p-bar-ratio must be > 0 and finite")
+            raise CLIError(f"--p-bar-ratio must be > 0 and finite, got {' '.join(f'{v:g}' for v in ratio)}")
         p_bar = ratio * np.sqrt(ContactProblem(psd, args.E_star, 1.0).V_max)  # (checks V's range first)
     return ContactProblem(psd, args.E_star, p_bar[0] if p_bar.size == 1 else p_bar, f)
 

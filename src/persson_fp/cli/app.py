@@ -1,7 +1,8 @@
 """The ``persson-fp`` command: the parser and the dispatch to one module per subcommand (``report``, ``solve``,
 ``area``, ``surface``, ``sweep``, ``calibrate``, ``friction``; what they share is in ``_problem.py`` and ``_io.py``).
 
-It only wires the package together.  Every error -- a bad argument, an unreadable or unwritable
+It only wires the package together.  Every warning prints once as one line ``persson-fp: warning: ...`` on
+stderr (``_io.one_line_warnings``).  Every error -- a bad argument, an unreadable or unwritable
 file, a solver that refuses a problem or breaks an invariant -- prints one line on stderr and exits
 with code 2; Ctrl-C prints "interrupted" and exits with 130.  Files are written under a temporary
 name and renamed when complete, so an interrupted run leaves no half-written file.
@@ -19,7 +20,7 @@ from persson_fp.cli import calibrate as cli_calibrate
 from persson_fp.cli import friction as cli_friction
 from persson_fp.cli import surface as cli_surface
 from persson_fp.cli import sweep as cli_sweep
-from persson_fp.cli._io import CLIError
+from persson_fp.cli._io import CLIError, one_line_warnings
 from persson_fp.cli._problem import _check_combination
 from persson_fp.results.solution import SolverError
 
@@ -29,7 +30,9 @@ persson-fp: Persson's theory of elastic rough-surface contact as a diffusion (Fo
 The contact-pressure PDF P0(p, zeta) obeys dP0/dzeta = 1/2 B2 d2P0/dp2 with an absorbing wall at p = 0;
 B2 = S(A*) dV/dzeta, S = 1 in Persson's original theory.  The default surface is the reference problem:
 self-affine, H = 0.8, q_l = 1, q_r = 2, q_s = 128 (zeta_max = 128), rms slope 0.1, E* = 1,
-p_bar = 0.5 sqrt(V(zeta_max)).  Units: any consistent set (the defaults are dimensionless).
+p_bar = 0.5 sqrt(V(zeta_max)).  Units: SI unless --units none (lengths in m, pressures in Pa; said once on
+stdout); every CSV header carries its unit in brackets, e.g. "p_bar [Pa]", "u_YP08 [m]".  Existing outputs are
+refused unless --force; warnings print once each, one line "persson-fp: warning: ...", on stderr.
 
 commands:
   report   (default) table of V, A*, Var(p), elastic energy for every fudge model, persson-fp's own
@@ -48,9 +51,9 @@ examples:
   persson-fp
   persson-fp report --H 0.3 --zeta-max 1000 --output results/
   persson-fp solve --method fv --p-bar-ratio 0.1 0.5 2 --fudge YP08 --output sol.csv
-  persson-fp solve --psd-csv my_psd.csv --E-star 2.1e11 --p-bar 1e6 --method sines
+  persson-fp solve --psd my_psd.csv --E-star 2.1e11 --p-bar 1e6 --method sines
   persson-fp area --n-loads 200 --output area/
-  persson-fp surface heights.npy --size 1e-3 --E-star 2.1e11 --output surf/
+  persson-fp surface heights.npy --size 1e-3 --E-star 2.1e11 --p-bar 1e5 --viscosity 1e-3 --pressure-drop 1e5
   persson-fp calibrate data.csv --psd psd.csv --model YP08 WM17 Xu24
   persson-fp friction --master-curve mc.csv --wlf 8.86 101.6 --T-ref 20 --psd road.csv --p-bar 2e5
 
@@ -97,8 +100,9 @@ def main(argv=None) -> int:
         args = parser.parse_args(argv)
         if args.command is None:
             args = parser.parse_args(["report"])
-        _check_combination(args)
-        return args.func(args)
+        with one_line_warnings():  # every warning once, as one line "persson-fp: warning: ..."
+            _check_combination(args)
+            return args.func(args)
     except KeyboardInterrupt:
         print("persson-fp: interrupted", file=sys.stderr)
         return 130

@@ -11,6 +11,8 @@ import csv
 import json
 import os
 
+from persson_fp.cli._io import add_units_arg, choice, col, resolve_units, unit
+
 HELP = "fit a fudge model's parameters (gamma) to your A*(p_bar) and/or mean-separation data, with uncertainty"
 
 EPILOG = """\
@@ -37,22 +39,39 @@ def add_parser(sub) -> argparse.ArgumentParser:
     ca.add_argument("--psd", nargs="+", required=True, help="spectrum CSV file(s), columns q,C (one per surface)")
     ca.add_argument("--q-column", default="q", help="wavenumber column of the spectra (default q)")
     ca.add_argument("--C-column", dest="C_column", default="C", help="PSD column of the spectra (default C)")
-    ca.add_argument("--model", nargs="+", default=["YP08"], help="YP08 (default), WM17, Xu24; several: ranked")
+    ca.add_argument(
+        "--model",
+        "--fudge",
+        dest="model",
+        nargs="+",
+        type=choice(["YP08", "WM17", "Xu24"]),
+        default=["YP08"],
+        help="fudge model(s): YP08 (default), WM17, Xu24 (any case); several: fitted and ranked",
+    )
     ca.add_argument("--params", nargs="+", default=["gamma"], help="free parameters (default gamma)")
     ca.add_argument(
         "--quantities", nargs="+", default=None, help="contact_area and/or mean_separation (default: those in DATA)"
     )
     ca.add_argument("--E-star", type=float, default=1.0, help="plane-strain modulus E/(1-nu^2), pressure (default 1)")
     ca.add_argument(
-        "--weighting", default="yang-persson", help="energy weighting of the mean separation (default yang-persson)"
+        "--weighting",
+        default="yang-persson",
+        type=str.lower,
+        help="energy weighting of the mean separation (default yang-persson)",
     )
-    ca.add_argument("--criterion", default="held-out", help="ranking of several models: held-out (default), aic, bic")
+    ca.add_argument(
+        "--criterion",
+        default="held-out",
+        type=str.lower,
+        help="ranking of several models: held-out (default), aic, bic",
+    )
     ca.add_argument("--bootstrap", type=int, default=0, help="bootstrap resamples of the data points (default 0)")
     ca.add_argument("--seed", type=int, default=None, help="random seed of the bootstrap")
     ca.add_argument("--output", default=None, help="write the residual table (data, fit, relative error) as CSV")
     ca.add_argument("--json", default=None, help="write the fitted values, uncertainties and intervals as JSON")
     ca.add_argument("--plot", default=None, help="write a PNG of data, fit and 95 %% band")
     ca.add_argument("--force", action="store_true", help="replace existing --output / --json / --plot files")
+    add_units_arg(ca)
     ca.set_defaults(func=cmd_calibrate)
     return ca
 
@@ -79,6 +98,7 @@ def cmd_calibrate(args) -> int:
     from persson_fp.cli._io import CLIError, _atomic_open, _check_new_file, _make_parent, _save_figure
     from persson_fp.surfaces.tabulated import TabulatedPSD
 
+    units = resolve_units(args)
     for opt in ("output", "json", "plot"):
         _check_new_file(getattr(args, opt), args.force, f"--{opt}")
     for path in [args.data, *args.psd]:
@@ -109,6 +129,17 @@ def cmd_calibrate(args) -> int:
     if args.output:
         _make_parent(args.output, "--output")
         table = cal.residual_table()
+        kinds = {"contact_area": "-", "mean_separation": "length"}
+        table = {  # units in the headers; data and fit in the unit of each row's quantity (the unit column)
+            "surface": table["surface"],
+            "quantity": table["quantity"],
+            "unit": [unit(kinds.get(str(q), "-"), units) for q in table["quantity"]],
+            col("p_bar", "pressure", units): table["p_bar"],
+            "data [unit]": table["data"],
+            "fit [unit]": table["fit"],
+            col("rel_error", "-", units): table["rel_error"],
+            col("residual", "-", units): table["residual"],
+        }
         with _atomic_open(args.output, "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(list(table))

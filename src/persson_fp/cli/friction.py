@@ -13,7 +13,7 @@ import os
 
 import numpy as np
 
-from persson_fp.cli._io import CLIError, _atomic_open, _make_parent, _save_figure
+from persson_fp.cli._io import CLIError, _atomic_open, _make_parent, _save_figure, choice
 
 MAX_POINTS = 100_000
 """Largest number of (velocity, temperature) pairs in one run (~1 kB of work arrays each per q node)."""
@@ -46,7 +46,7 @@ def add_parser(sub):
     mat.add_argument("--master-curve", default=None, help="DMA master curve CSV: frequency, E_storage, E_loss")
     mat.add_argument("--zener", type=float, nargs=3, metavar=("E_R", "E_G", "TAU"),
                      help="a Zener rubber: rubbery and glassy moduli (Pa) and relaxation time (s)")  # fmt: skip
-    fr.add_argument("--frequency-unit", default="Hz", choices=["Hz", "rad/s"], help="master curve's (default Hz)")
+    fr.add_argument("--frequency-unit", default="Hz", type=choice(["Hz", "rad/s"]), help="master curve's (default Hz)")
     fr.add_argument("--nu", type=float, default=0.5, help="Poisson ratio in [0, 0.5] (default 0.5)")
     sh = fr.add_mutually_exclusive_group()
     sh.add_argument("--wlf", type=float, nargs=2, metavar=("C1", "C2"), help="WLF shift constants (C2 in K)")
@@ -58,9 +58,9 @@ def add_parser(sub):
                     help="sliding speeds, m/s: two values are a range (--n-velocities), more are the list")  # fmt: skip
     fr.add_argument("--n-velocities", type=int, default=50, help="speeds in a --velocity range, log-spaced (50)")
     fr.add_argument("--q1", type=float, default=None, help="short-wavelength cut-off q1, 1/m (default the PSD's q_s)")
-    fr.add_argument("--fudge", default="YP08", choices=["none", "YP08", "WM17", "Xu24"],
+    fr.add_argument("--fudge", default="YP08", type=choice(["none", "YP08", "WM17", "Xu24"]),
                     help="weight S(P) in the friction integrand (default YP08)")  # fmt: skip
-    fr.add_argument("--modulus-in-G", default="reduced", choices=["reduced", "plain"],
+    fr.add_argument("--modulus-in-G", default="reduced", type=choice(["reduced", "plain"]),
                     help="E/(1-nu^2) (default) or E in G(q)")  # fmt: skip
     fr.add_argument("--strain-softening", default=None, help="CSV: strain (fraction), f, g (Payne effect)")
     fr.add_argument("--output", default="persson-fp-friction", help="folder for friction.csv / friction.png")
@@ -113,8 +113,6 @@ def _road(args):
 
 
 def cmd_friction(args) -> int:
-    import warnings
-
     from persson_fp.analysis.friction import SCOPE, rubber_friction
     from persson_fp.theory import viscoelastic as ve
 
@@ -137,20 +135,16 @@ def cmd_friction(args) -> int:
     T = None if args.temperature is None else np.asarray(args.temperature, dtype=float)[:, None]
     if T is not None and T.size * v.size > MAX_POINTS:
         raise CLIError(f"{T.size} temperatures x {v.size} speeds: at most {MAX_POINTS} pairs in one run")
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        material = _material(args)
-        psd = _road(args)
-        soft = None
-        if args.strain_softening is not None:
-            eps, f, g = _read_columns(args.strain_softening, "--strain-softening", ["strain", "f", "g"])
-            soft = ve.StrainSoftening(eps, f, g)
-        res = rubber_friction(
-            psd, material, args.p_bar, v, temperature=T, q1=args.q1, fudge=None if args.fudge == "none" else args.fudge,
-            modulus_in_G=args.modulus_in_G, strain_softening=soft,
-        )  # fmt: skip
-    for msg in dict.fromkeys(str(w.message) for w in caught):
-        print(f"warning: {msg}")
+    material = _material(args)
+    psd = _road(args)
+    soft = None
+    if args.strain_softening is not None:
+        eps, f, g = _read_columns(args.strain_softening, "--strain-softening", ["strain", "f", "g"])
+        soft = ve.StrainSoftening(eps, f, g)
+    res = rubber_friction(
+        psd, material, args.p_bar, v, temperature=T, q1=args.q1, fudge=None if args.fudge == "none" else args.fudge,
+        modulus_in_G=args.modulus_in_G, strain_softening=soft,
+    )  # fmt: skip
     os.makedirs(out, exist_ok=True)
     csv_path = os.path.join(out, "friction.csv")
     _make_parent(csv_path, "--output")

@@ -16,6 +16,8 @@ from persson_fp.cli._io import (
     _count,
     _make_parent,
     _save_figure,
+    col,
+    unit,
 )
 from persson_fp.cli._problem import (
     MIN_TOL,
@@ -53,13 +55,14 @@ def cmd_solve(args) -> int:
     t0 = time.perf_counter()
     sol = solve(pr, method=args.method, tol=args.tol, **opts)
     wall = time.perf_counter() - t0
+    pu = f"p_bar [{unit('pressure', args.units)}]"
     if not pr.has_closed_form:  # a moving yield wall: the solver's own error estimate instead of the exact one
         est = sol.error_estimate
-        print(f"{sol.method}: steps = {sol.info.get('steps')}, wall = {wall * 1e3:.2f} ms ({est['kind']})")
-        print(f"{'p_bar':>12} {'A_el':>12} {'A_pl':>12} {'A_non':>12} {'error est.':>10} {'load/p_bar-1':>13}")
+        print(f"{sol.method}: steps = {sol.info.get('steps')}, {_times(sol, wall)} ({est['kind']})")
+        print(f"{pu:>14} {'A_el':>12} {'A_pl':>12} {'A_non':>12} {'error est.':>10} {'load/p_bar-1':>13}")
         for j, pb in enumerate(pr.p_bar):
             print(
-                f"{pb:12.5e} {sol.elastic_area_all[-1, j]:12.8f} {sol.plastic_area_all[-1, j]:12.8f} "
+                f"{pb:14.5e} {sol.elastic_area_all[-1, j]:12.8f} {sol.plastic_area_all[-1, j]:12.8f} "
                 f"{1 - sol.contact_area_all[-1, j]:12.8f} {est['contact_area'][-1, j]:10.2e} "
                 f"{sol.load_all[-1, j] / pb - 1:13.2e}"
             )
@@ -68,19 +71,21 @@ def cmd_solve(args) -> int:
     if pr.hardness is not None:
         print("elastoplastic: A_pl (num) " + " ".join(f"{v:.8f}" for v in sol.plastic_area_all[-1]))
     ex = exact(pr)
-    print(f"{sol.method}: n_p = {sol.p.size}, steps = {sol.info.get('steps')}, wall = {wall * 1e3:.2f} ms")
-    print(
-        f"{'p_bar':>12} {'A* (num)':>12} {'A* (exact)':>12} {'|dA*|':>10} {'Var(p)':>12} "
-        f"{'load/p_bar-1':>13} {'L1':>10}"
-    )
+    print(f"{sol.method}: n_p = {sol.p.size}, steps = {sol.info.get('steps')}, {_times(sol, wall)}")
+    print(f"{pu:>14} {'A* (num)':>12} {'A* (exact)':>12} {'|dA*|':>10} {'Var(p)':>12} {'load/p_bar-1':>13} {'L1':>10}")
     A_ex = np.atleast_1d(ex.contact_area)
     for j, pb in enumerate(pr.p_bar):
         print(
-            f"{pb:12.5e} {sol.contact_area_all[-1, j]:12.8f} {A_ex[j]:12.8f} {cmp_.area_error[-1, j]:10.2e} "
+            f"{pb:14.5e} {sol.contact_area_all[-1, j]:12.8f} {A_ex[j]:12.8f} {cmp_.area_error[-1, j]:10.2e} "
             f"{np.reshape(sol.variance, (sol.zeta.size, -1))[-1, j]:12.5e} "
             f"{sol.load_all[-1, j] / pb - 1:13.2e} {cmp_.L1[-1, j]:10.2e}"
         )
     return _write_solution(args, sol, pr)
+
+
+def _times(sol, wall) -> str:
+    """The solver's wall time (``sol.wall_time``, what ``sol.plot()`` and the report show) and the whole call's."""
+    return f"wall = {sol.wall_time * 1e3:.3g} ms (the whole call, set-up included: {wall * 1e3:.3g} ms)"
 
 
 def _write_solution(args, sol, pr) -> int:
@@ -88,8 +93,10 @@ def _write_solution(args, sol, pr) -> int:
     if args.output:
         path = args.output
         _make_parent(path, "--output")
+        units = args.units
         if path.endswith(".json"):
             data = {
+                "units": {k: unit(k, units) for k in ("pressure", "1/pressure")},
                 "method": sol.method,
                 "zeta": sol.zeta.tolist(),
                 "p": sol.p.tolist(),
@@ -103,12 +110,15 @@ def _write_solution(args, sol, pr) -> int:
         else:
             with _atomic_open(path, "w", newline="") as fh:
                 w = csv.writer(fh)
+                up, uP = unit("pressure", units), unit("1/pressure", units)
                 if np.ndim(sol.p) == 1:
-                    w.writerow(["p"] + [f"P0(p_bar={pb:.6g})" for pb in pr.p_bar])
+                    w.writerow([col("p", "pressure", units)] + [f"P0(p_bar={pb:.6g} {up}) [{uP}]" for pb in pr.p_bar])
                     for i, p in enumerate(sol.p):
                         w.writerow([f"{p:.12g}"] + [f"{v:.12g}" for v in sol.P0_all[-1, :, i]])
                 else:  # a grid per load (a moving yield wall): p and P0 columns for each load
-                    w.writerow([f"{c}(p_bar={pb:.6g})" for pb in pr.p_bar for c in ("p", "P0")])
+                    w.writerow(
+                        [f"{c}(p_bar={pb:.6g} {up}) [{u}]" for pb in pr.p_bar for c, u in (("p", up), ("P0", uP))]
+                    )
                     for i in range(np.shape(sol.p)[-1]):
                         w.writerow(
                             [f"{v:.12g}" for j in range(pr.n_loads) for v in (sol.p[j, i], sol.P0_all[-1, j, i])]
@@ -131,13 +141,16 @@ def add_parser(sub) -> None:
     so.add_argument(
         "--method",
         default="fv",
-        help="auto | fv | mol | sines | chebyshev | py-pde | fipy | chapman-kolmogorov | monte-carlo",
+        type=str.lower,
+        help="auto | fv | mol | sines | chebyshev | py-pde | fipy | chapman-kolmogorov | monte-carlo (any case)",
     )
     so.add_argument("--n-p", dest="n_p", type=_count, default=None, help="grid cells / points / modes")
     so.add_argument("--n-steps", dest="n_steps", type=_count, default=None, help="steps in zeta (fixed-step schemes)")
     so.add_argument("--rtol", type=float, default=None, help="relative tolerance (adaptive methods)")
     so.add_argument("--atol", type=float, default=None, help="absolute tolerance (adaptive methods)")
-    so.add_argument("--scheme", default=None, help="fv time scheme (explicit, crank-nicolson, implicit, tr-bdf2)")
+    so.add_argument(
+        "--scheme", default=None, type=str.lower, help="fv time scheme (explicit, crank-nicolson, implicit, tr-bdf2)"
+    )
     so.add_argument("--output", default=None, help="write P0 at zeta_max: .csv or .json")
     so.add_argument("--plot", default=None, help="write a PNG of P0 against the exact solution")
     so.add_argument("--force", action="store_true", help="replace existing --output / --plot files")

@@ -15,7 +15,7 @@ import warnings
 
 import numpy as np
 
-from persson_fp.cli._io import _check_new_file, _make_parent
+from persson_fp.cli._io import _check_new_file, _make_parent, check_load_vs_modulus, choice
 
 
 def _write_table(res, out):
@@ -67,17 +67,23 @@ def add_parser(sub) -> argparse.ArgumentParser:
     sw.add_argument("--q-column", default="q", help="wavenumber column name (default q)")
     sw.add_argument("--C-column", dest="C_column", default="C", help="PSD column name (default C)")
     sw.add_argument("--p-bar", type=float, nargs="+", default=None, help="absolute nominal pressures (pressure)")
+    sw.add_argument("--p-bar-ratio", type=float, nargs="+", default=None, help="loads as p_bar/sqrt(V) of each surface")
     sw.add_argument("--n-loads", type=int, default=100, help="relative loads per surface (default 100)")
-    sw.add_argument("--ratio-min", type=float, default=1e-3, help="smallest p_bar/sqrt(V) (default 1e-3)")
-    sw.add_argument("--ratio-max", type=float, default=3.0, help="largest p_bar/sqrt(V) (default 3)")
-    sw.add_argument("--models", nargs="+", default=list(MODELS), help=f"fudge models (default all: {' '.join(MODELS)})")
+    sw.add_argument("--p-bar-ratio-min", "--ratio-min", dest="ratio_min", type=float, default=1e-3,
+                    help="smallest p_bar/sqrt(V) (default 1e-3)")  # fmt: skip
+    sw.add_argument("--p-bar-ratio-max", "--ratio-max", dest="ratio_max", type=float, default=3.0,
+                    help="largest p_bar/sqrt(V) (default 3)")  # fmt: skip
+    sw.add_argument("--models", "--fudge", dest="models", nargs="+", type=choice(list(MODELS)), default=list(MODELS),
+                    help=f"fudge models, any case (default all: {' '.join(MODELS)})")  # fmt: skip
     sw.add_argument(
         "--quantities",
         nargs="+",
         default=["contact_area"],
         help=f"quantities (default contact_area; available: {' '.join(QUANTITIES)})",
     )
-    sw.add_argument("--method", default="exact", help="exact (default) or a solver: fv, mol, sines, ...")
+    sw.add_argument(
+        "--method", default="exact", type=str.lower, help="exact (default) or a solver: fv, mol, sines, ..."
+    )
     sw.add_argument("--E-star", type=float, default=1.0, help="plane-strain modulus E* (default 1)")
     sw.add_argument("--workers", type=int, default=1, help="processes (default 1: serial)")
     sw.add_argument(
@@ -97,8 +103,16 @@ def cmd_sweep(args) -> int:
 
     if args.workers < 1:
         raise ValueError(f"--workers must be >= 1, got {args.workers}")
+    if args.p_bar is not None and args.p_bar_ratio is not None:
+        raise ValueError("--p-bar and --p-bar-ratio: give the loads one way")
+    for flag, x in (("--p-bar", args.p_bar), ("--p-bar-ratio", args.p_bar_ratio)):
+        if x is not None and not (np.all(np.isfinite(x)) and np.all(np.array(x) > 0)):
+            raise ValueError(f"{flag} must be finite numbers > 0, got {' '.join(f'{v:g}' for v in x)}")
     if args.p_bar is not None:
         loads, relative = np.array(args.p_bar), False
+        check_load_vs_modulus(loads, args.E_star)
+    elif args.p_bar_ratio is not None:
+        loads, relative = np.array(args.p_bar_ratio), True
     else:
         if not (0 < args.ratio_min < args.ratio_max < np.inf):
             raise ValueError("--ratio-min and --ratio-max must satisfy 0 < min < max < inf")
