@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import csv
 import math
+import re
 
 import numpy as np
 import pytest
@@ -119,7 +120,7 @@ def test_surface_figure_axes_say_m_and_pa(tmp_path):
     leak = fig.axes[5]
     assert "eta" in leak.get_ylabel() and "m$^3$" in leak.get_ylabel() and "per unit" in leak.get_title()
     legend = [t.get_text() for t in fig.axes[2].get_legend().get_texts()]
-    assert legend and all(t.endswith(" Pa") for t in legend)
+    assert legend and all(re.match(r"p̄ = [\d.e+-]+ Pa: contact atom A = [\d.]+$", t) for t in legend), legend
     import matplotlib.pyplot as plt
 
     plt.close(fig)

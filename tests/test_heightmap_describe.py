@@ -12,6 +12,7 @@ from scipy.integrate import quad
 from scipy.special import j0
 
 import persson_fp as pf
+from persson_fp.surfaces.heightmap import ImplausibleSlopeWarning
 
 sys.path.insert(0, str(Path(__file__).parent))
 from test_surface import synthetic_surface  # noqa: E402
@@ -84,3 +85,30 @@ def test_describe_of_a_periodic_map_gives_the_spectral_slope_on_both_sides(rng):
     spec_s = np.sqrt(2 * np.pi * _band_integral(s.psd, lambda q: q**3))
     assert _number(line, r"against the spectrum's ([\d.e+-]+)") == pytest.approx(spec_s, rel=1e-5)
     assert _number(line, r"= ([+-][\d.]+)%") == pytest.approx(100 * (spec_s / rms_s - 1), abs=0.006)
+
+
+def test_describe_names_the_length_unit_and_refuses_an_empty_one():
+    n, L = 64, 1e-3
+    rng = np.random.default_rng(3)
+    h = rng.standard_normal((n, n)) * 1e-7
+    surf = pf.psd_from_heightmap(h, L, periodic=True)
+    text = surf.describe("m")
+    assert "rad/m" in text and f"{surf.psd.rms_height:.6g} m," in text and "length" not in text
+    with pytest.raises(ValueError, match="length_unit"):
+        surf.describe("  ")
+
+
+@pytest.mark.parametrize("scale, word", [(1e6, "steep"), (1e-6, "flat")])
+def test_heightmap_in_other_units_than_its_size_warns_naming_the_mix_up(scale, word):
+    """A map whose rms slope (finite differences here, the oracle) is outside 1e-4..5 warns; the spectrum is kept."""
+    n, L = 64, 1e-3
+    h = 1e-7 * np.random.default_rng(5).standard_normal((n, n))  # white heights: rms slope ~ 1e-2
+    gx, gy = np.gradient(h * scale, L / n)
+    slope = np.sqrt(np.mean(gx**2 + gy**2))  # central differences: below the spectral slope, same order
+    assert not 1e-4 <= slope <= 5
+    with pytest.warns(ImplausibleSlopeWarning, match=f"too {word}.*different units"):
+        surf = pf.psd_from_heightmap(h * scale, L, periodic=True)
+    assert 1 < surf.rms_slope_data / slope < 3  # white noise: the spectral derivative sees the highest modes fully
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ImplausibleSlopeWarning)
+        pf.psd_from_heightmap(h, L, periodic=True)  # slope 0.19: plausible, no warning

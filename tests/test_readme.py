@@ -73,9 +73,7 @@ def _separation_wm17(C, V):
     """u(p) = int_p^inf U/p'^2 dp' - U(p)/p and K = p/(dU/dp) (Persson 2007), U = (pi/2) E* int q^2 C w(p/sqrt V) dq
     with Yang & Persson's weight w(y) = P S(P), P = erf(y/sqrt2); Gauss-Legendre in ln q on each smooth piece."""
     from scipy.integrate import quad
-    from scipy.special import erf
-
-    from scipy.special import roots_legendre
+    from scipy.special import erf, roots_legendre
 
     x, w = roots_legendre(400)
     nodes, weights = [], []

@@ -108,7 +108,7 @@ def _road(args):
 
     args.series, args.H = _SERIES, None
     surf = _read(args)
-    print(surf.describe())
+    print(surf.describe("m"))  # SI throughout here
     return surf.psd
 
 

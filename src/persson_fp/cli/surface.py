@@ -108,7 +108,10 @@ examples:
 
 
 def _read(args):
+    import warnings
+
     from persson_fp._validate import as_file_path
+    from persson_fp.surfaces.heightmap import ImplausibleSlopeWarning
     from persson_fp.surfaces.readers import read_contact_engineering_csv, read_heightmap
 
     path = as_file_path(args.file, "file")
@@ -122,7 +125,10 @@ def _read(args):
         print("note: --H and --series apply to contact.engineering CSV files only; ignored for a height map")
     size = args.size[0] if len(args.size) == 1 else args.size
     try:
-        return _warn_slope(_check_units(read_heightmap(path, size, periodic=args.periodic), args), args)
+        with warnings.catch_warnings():  # the command's own check below says it once, naming --size
+            warnings.filterwarnings("ignore", category=ImplausibleSlopeWarning)
+            surf = read_heightmap(path, size, periodic=args.periodic)
+        return _warn_slope(_check_units(surf, args), args)
     except (ArithmeticError, ValueError) as e:  # ArithmeticError: overflow, or numpy's FloatingPointError
         if isinstance(e, ArithmeticError) or "floating-point range" in str(e) or str(e).startswith("C must be finite"):
             raise ValueError(
@@ -243,7 +249,7 @@ def cmd_surface(args) -> int:
     leak = flow[0] is not None
     surf = _read(args)
     psd = surf.psd
-    desc = surf.describe()
+    desc = surf.describe(unit("length", units))
     print(desc)
     E = args.E_star
     sV = float(np.sqrt(psd.V(E_star=E)))
@@ -417,11 +423,15 @@ def _figure(psd, sV, data, sel, title, units="none", leak=None):
     ax[1, 0].set(xlabel=f"mean separation u  [{L}]", ylabel=rf"$\bar p$  [{P}]", title="load-separation (Persson 2007)")
     ax[1, 1].set(xlabel=rf"$\bar p$  [{P}]", ylabel=f"K = -dp/du  [{S}]", title="normal stiffness")
     # what happens in the gaps, for one model: P(u) at up to four loads with the contact atom, and the leak rate
-    plot_gap_pdf(gaps, loads=list(sel[:4]) if marked else None, ax=ax[0, 2])
+    si = units != "none"  # the plotting functions write a unit only where there is one
+    plot_gap_pdf(
+        gaps,
+        loads=list(sel[:4]) if marked else None,
+        ax=ax[0, 2],
+        length_unit=L if si else None,
+        pressure_unit=P if si else None,
+    )
     ax[0, 2].set(xlabel=f"gap u  [{L}]", ylabel=f"P(u)  [1/{L}]")
-    for line in ax[0, 2].get_lines():
-        if line.get_label().startswith(r"$\bar p$") and P not in line.get_label():
-            line.set_label(f"{line.get_label()} {P}")
     ax[0, 2].legend(fontsize=7)
     ax[0, 2].set_title(f"gap distribution P(u), {GAP_MODEL} (arrows: contact atom)", fontsize=9)
     scale = 1.0 if leak is None else leak[0]

@@ -53,6 +53,16 @@ __all__ = [
 RMS_TOLERANCE = 0.01
 """Relative difference of rms height or slope (spectrum vs height data) above which the import warns."""
 
+PLAUSIBLE_SLOPE = (1e-4, 5.0)
+"""rms slopes of measured surfaces (polished to rough: 1e-4 to ~3).  Outside, the import warns
+(:class:`ImplausibleSlopeWarning`): heights and size are probably in different units -- heights in micrometres with
+the size in metres make the slope 1e6 too steep, the reverse 1e6 too flat."""
+
+
+class ImplausibleSlopeWarning(UserWarning):
+    """A height map whose rms slope is outside :data:`PLAUSIBLE_SLOPE`: probably heights and size in different
+    units (the spectrum is still returned)."""
+
 
 TUKEY_ALPHA = 0.5
 """Tapered share of the Tukey window of non-periodic maps (a cosine taper over a quarter of each side)."""
@@ -110,7 +120,7 @@ class MeasuredSurface:
             return None
         return self.psd.rms_height / self.rms_height_data - 1.0, self.rms_slope_spectrum / self.rms_slope_data - 1.0
 
-    def describe(self) -> str:
+    def describe(self, length_unit: str = "length") -> str:
         r"""A few lines for a report or a CSV header: source, convention, each rms value named with how it is taken.
 
         The spectrum's rms height and slope are its integrals over the band :math:`[q_l, q_s]`,
@@ -120,6 +130,12 @@ class MeasuredSurface:
         (:func:`~persson_fp.surfaces.annuli.central_difference_slope`), a third number, which the percentage
         compares, so each percentage is "spectrum / data - 1" of one definition.
 
+        Parameters
+        ----------
+        length_unit : str
+            The name of the heights' and the size's unit ("m", "um", ...): lengths are written in it and wavenumbers
+            in rad per it.  Default "length" (any consistent unit).
+
         Returns
         -------
         str
@@ -127,19 +143,21 @@ class MeasuredSurface:
             height (length) and slope, the height data's with the definition of each and their relative differences,
             the notes.
         """
-        p = self.psd
-        band = f"over q in [{p.q_l:.6g}, {p.q_s:.6g}]"
+        if not isinstance(length_unit, str) or not length_unit.strip():
+            raise ValueError(f"length_unit must be a non-empty string (the name of a unit), got {length_unit!r}")
+        p, L = self.psd, length_unit.strip()
+        band = f"over q in [{p.q_l:.6g}, {p.q_s:.6g}] rad/{L}"
         lines = [
             f"source: {self.source}",
             f"spectrum: Persson's isotropic C(q) (<h^2> = 2 pi int q C dq), input convention {p.convention!r}, "
-            f"{p.q.size} points, q in [{p.q_l:.6g}, {p.q_s:.6g}] rad/length",
-            f"rms height {p.rms_height:.6g} length, rms slope {p.rms_slope:.6g} (the spectrum's, "
+            f"{p.q.size} points, q in [{p.q_l:.6g}, {p.q_s:.6g}] rad/{L}",
+            f"rms height {p.rms_height:.6g} {L}, rms slope {p.rms_slope:.6g} (the spectrum's, "
             f"sqrt(2 pi int q C dq) and sqrt(2 pi int q^3 C dq) (exact derivative) {band})",
         ]
         if self.rms_height_data is not None:
             eh, es = self.rms_errors
             lines.append(
-                f"height data: rms height {self.rms_height_data:.6g} length (the detrended heights); "
+                f"height data: rms height {self.rms_height_data:.6g} {L} (the detrended heights); "
                 f"spectrum / data - 1 = {eh:+.2%}"
             )
             if self.grid_step is None:
@@ -161,6 +179,21 @@ class MeasuredSurface:
 
 
 def _check_rms(surface: MeasuredSurface) -> MeasuredSurface:
+    slope = surface.rms_slope_data
+    lo, hi = PLAUSIBLE_SLOPE
+    if slope is not None and not lo <= slope <= hi:
+        way = "steep" if slope > hi else "flat"
+        likely = (
+            "heights in a larger unit than the size (um heights with a size in m: 1e6 too steep)"
+            if slope > hi
+            else "heights in a smaller unit than the size (m heights with a size in um: 1e6 too flat)"
+        )
+        warnings.warn(
+            f"the height map's rms slope is {slope:.3g}, too {way} for a measured surface ({lo:g} to ~3): the "
+            f"heights and the size are probably in different units, {likely}; give both in one unit",
+            ImplausibleSlopeWarning,
+            stacklevel=3,
+        )
     errs = surface.rms_errors
     if errs is not None and max(abs(errs[0]), abs(errs[1])) > RMS_TOLERANCE:
         warnings.warn(
