@@ -41,7 +41,7 @@ def test_area_command_csv_matches_exact(tmp_path):
     rows = list(csv.DictReader(open(tmp_path / "contact_area.csv")))
     assert len(rows) == 50
     psd = pf.SelfAffinePSD.from_rms_slope(0.1, 0.3, 1.0, 2.0, 128.0)
-    p_bar = np.array([float(r["p_bar [Pa]"]) for r in rows])  # SI assumed (said once on stdout)
+    p_bar = np.array([float(r["p_bar [pressure]"]) for r in rows])  # the dimensionless reference: no unit
     for name in ("none", "YP08"):
         A = pf.exact(pf.ContactProblem(psd, 1.0, p_bar, None if name == "none" else name)).contact_area
         np.testing.assert_allclose(

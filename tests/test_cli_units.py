@@ -276,3 +276,16 @@ def test_report_times_are_warm_medians_with_the_first_call_apart(tmp_path, capsy
     assert wall_screen == pytest.approx(float(data[1]), rel=5e-3)  # 3 significant digits on the screen
     assert first_screen == pytest.approx(float(data[2]), rel=5e-3)
     assert "median of" in out and "warm calls" in out
+
+
+def test_the_dimensionless_reference_problem_is_not_labelled_si(tmp_path, capsys):
+    """Without a length or a pressure among the options (and E* = 1) the run is the reference problem: no SI units on
+    it; one physical value makes it SI, said once."""
+    assert main(["area", "--n-loads", "5", "--output", str(tmp_path / "a")]) == 0
+    out = capsys.readouterr().out
+    assert out.count("units: none (the dimensionless reference problem") == 1 and "[Pa]" not in out
+    header = (tmp_path / "a" / "contact_area.csv").read_text(encoding="utf8").splitlines()
+    assert any(line.startswith("p_bar [pressure]") for line in header)
+    assert main(["area", "--n-loads", "5", "--E-star", "2e11", "--output", str(tmp_path / "b")]) == 0
+    out = capsys.readouterr().out
+    assert out.count("units: SI assumed") == 1

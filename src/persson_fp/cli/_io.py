@@ -150,11 +150,22 @@ def add_units_arg(p):
     )
 
 
+_PHYSICAL_INPUTS = ("q_l", "q_r", "rms_height", "C0", "psd_csv", "p_bar", "file")
+"""Options that carry a length or a pressure: without any of them (and with E* = 1) the run is the dimensionless
+reference problem."""
+
+
 def resolve_units(args) -> str:
-    """The unit system of the run; when ``--units`` was not given, SI is assumed and said once on stdout."""
+    """The unit system of the run; when ``--units`` was not given, SI is assumed and said once on stdout -- except
+    for the dimensionless reference problem (no option with a length or a pressure, E* = 1), which says so."""
     if getattr(args, "units", None) is None:
-        args.units = "SI"
-        print("units: SI assumed (lengths in m, pressures in Pa; --units none for dimensionless input)")
+        reference = all(getattr(args, name, None) is None for name in _PHYSICAL_INPUTS)
+        if reference and getattr(args, "E_star", 1.0) == 1.0:
+            args.units = "none"
+            print("units: none (the dimensionless reference problem, E* = 1; --units SI with values in m and Pa)")
+        else:
+            args.units = "SI"
+            print("units: SI assumed (lengths in m, pressures in Pa; --units none for dimensionless input)")
     return args.units
 
 
