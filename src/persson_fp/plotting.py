@@ -130,7 +130,7 @@ def plot_solution(
     ``pressure_unit``), :math:`\bar p/\sqrt{V}` and that load's L1 error at the last station drawn.  p is in units of
     :math:`\sqrt{V(\zeta_{max})}`, the same for all loads.  Without a closed form (a moving yield wall, general
     coefficients) the numerical P0 is drawn alone (lines with markers) and the errors are the solver's estimates
-    (marked ≈).  The time in the title is ``sol.wall_time``, as :meth:`Solution.summary` states it.
+    (marked ≈).  The time in the title is ``sol.wall_time``, as :meth:`~persson_fp.Solution.summary` states it.
 
     Parameters
     ----------

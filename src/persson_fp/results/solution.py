@@ -513,7 +513,7 @@ class Solution:
         station and its error in the title; several loads, a curve per load (at the last station), each legend
         entry giving its p_bar (with ``pressure_unit``), p_bar/sqrt(V) and its own L1 error.  Without a closed form
         (a moving yield wall, general coefficients) the numerical P0 alone, with the solver's error estimates.  The
-        time shown is :attr:`wall_time`, as :meth:`summary` gives it.
+        time shown is ``wall_time``, as :meth:`summary` gives it.
 
         Parameters
         ----------
