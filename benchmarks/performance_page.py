@@ -186,28 +186,29 @@ def batches():
     ]
 
 
+def _fastest(rows, targets):
+    """The fastest whole call among ``rows`` (status ok) that reaches each L1 target, as a cell of the page."""
+    cells = []
+    for t in targets:
+        ok = [float(r["call_time_s"]) for r in rows if r["status"] == "ok" and r["L1"] and float(r["L1"]) <= t]
+        cells.append(_time(min(ok)) if ok else "not reached")
+    return cells
+
+
 def general():
     rows = _rows("general_engine.csv")
     targets = (1e-4, 1e-6, 1e-8)
     table = []
     for scene in sorted({r["scene"] for r in rows}):
         for method in sorted({r["method"] for r in rows if r["scene"] == scene}, key=lambda m: (m != "chebyshev", m)):
-            sel = [r for r in rows if r["scene"] == scene and r["method"] == method and r["status"] == "ok"]
-            cells = []
-            for t in targets:
-                ok = [float(r["call_time_s"]) for r in sel if r["L1"] and float(r["L1"]) <= t]
-                cells.append(_time(min(ok)) if ok else "not reached")
-            table.append([scene, method, *cells])
+            sel = [r for r in rows if r["scene"] == scene and r["method"] == method]
+            table.append([scene, method, *_fastest(sel, targets)])
     ns = _rows("general_nonseparable.csv")
     ntable = []
     for scene in sorted({r["scene"] for r in ns}):
         for method in ("persson-fp auto", "hand CN", "hand CN + Richardson"):
-            sel = [r for r in ns if r["scene"] == scene and r["method"] == method and r["status"] == "ok"]
-            cells = []
-            for t in targets:
-                ok = [float(r["call_time_s"]) for r in sel if float(r["L1"]) <= t]
-                cells.append(_time(min(ok)) if ok else "not reached")
-            ntable.append([scene, method, *cells])
+            sel = [r for r in ns if r["scene"] == scene and r["method"] == method]
+            ntable.append([scene, method, *_fastest(sel, targets)])
     return [
         "",
         "## General coefficients: how fast is the general engine?",
