@@ -289,3 +289,9 @@ def test_the_dimensionless_reference_problem_is_not_labelled_si(tmp_path, capsys
     assert main(["area", "--n-loads", "5", "--E-star", "2e11", "--output", str(tmp_path / "b")]) == 0
     out = capsys.readouterr().out
     assert out.count("units: SI assumed") == 1
+
+
+def test_a_negative_poisson_ratio_is_refused_by_its_flag_with_its_range(capsys):
+    rc = main(["friction", "--zener", "3e6", "3e9", "1e-4", "--nu", "-0.5", "--psd", "x.csv", "--p-bar", "2e5"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1 and "--nu" in err[0] and "[0, 0.5]" in err[0] and "-0.5" in err[0]

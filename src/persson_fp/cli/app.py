@@ -141,7 +141,15 @@ def _one_line(err) -> str:
     return " ".join(text.split())
 
 
-_FLAGS = {"n_p": "--n-p", "n_steps": "--n-steps", "E_star": "--E-star", "q_l": "--q-l", "q_r": "--q-r"}
+_FLAGS = {
+    "n_p": "--n-p",
+    "n_steps": "--n-steps",
+    "E_star": "--E-star",
+    "q_l": "--q-l",
+    "q_r": "--q-r",
+    "nu": "--nu",
+    "bootstrap": "--bootstrap",
+}
 """Option names in library messages -> the command-line flag that sets them."""
 
 _API_ONLY = ("k_domain", "zeta_out", "n_walkers")

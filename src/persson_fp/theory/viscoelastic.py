@@ -305,9 +305,12 @@ class ViscoelasticMaterial:
     vertical: object
 
     def _init_common(self, nu, T_ref, shift, vertical):
-        nu_ = as_positive_scalar(nu, "nu", allow_zero=True)
+        try:
+            nu_ = as_positive_scalar(nu, "nu", allow_zero=True)
+        except ValueError:
+            raise ValueError(f"nu (Poisson's ratio) must lie in [0, 0.5], got {nu!r}") from None
         if nu_ > 0.5:
-            raise ValueError(f"nu must lie in [0, 0.5], got {nu_!r}")
+            raise ValueError(f"nu (Poisson's ratio) must lie in [0, 0.5], got {nu_!r}")
         self.nu = nu_
         self.shift = _shift_law(shift)
         if T_ref is None:
