@@ -263,15 +263,15 @@ print("all checks passed")
 # ## What the figures show
 #
 # * **Import.** The spectra of the three BEM height maps match the height data's rms height and slope to within
-#   0.00% (round-off: the import fits each annulus to the power and slope power of its modes). The same spectrum
+#   0.00% (round-off: the import carries the modes' power and slope power, one point per annulus of modes). The same spectrum
 #   written in the 2-D FFT convention and read without `convention="iso2d"` has rms slope 0.628 instead of 0.1000:
 #   the factor $2\pi$ that the convention carries.
-# * **Mean separation.** Mean |error| against the BEM over 3 surfaces × 7 loads: Persson's original theory 33.9%;
-#   YP08 7.0% with Yang–Persson's weighting and 13.5% with the corrected-area weighting; WM17 4.2% / 10.4%.
+# * **Mean separation.** Mean |error| against the BEM over 3 surfaces × 7 loads: Persson's original theory 34.2%;
+#   YP08 7.3% with Yang–Persson's weighting and 13.8% with the corrected-area weighting; WM17 4.3% / 10.6%.
 #   Yang–Persson's weighting is the closer one, hence the package default. The theory overestimates $\bar u$ at light
 #   load and underestimates it near full contact (YP08: +10% at $\bar p/(E^*\bar g)=0.005$, -21% at 0.5).
-# * **Stiffness.** Against finite differences of the BEM gaps (the five inner loads): Persson 32%, YP08 10%
+# * **Stiffness.** Against finite differences of the BEM gaps (the five inner loads): Persson 33%, YP08 10%
 #   (Yang–Persson weighting) and 18% (corrected-area).
 # * **Contact area** (unextrapolated BEM at $N$ = 256/512): Persson 26%, YP08 3% mean |error| (notebook 09 does
 #   this with the Richardson-extrapolated reference).
-# * **Small loads.** $\bar u$ approaches $u_0\ln(\beta E^*/\bar p)$ with $u_0$ = 0.532 $h_{rms}$ (YP08, surface 1).
+# * **Small loads.** $\bar u$ approaches $u_0\ln(\beta E^*/\bar p)$ with $u_0$ = 0.528 $h_{rms}$ (YP08, surface 1).
