@@ -488,7 +488,10 @@ class ChebyshevSolver(Solver):
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem
         if self.path == "moving-wall":  # (chosen in validate)
-            out = solve_moving_wall(pr, o, self.zeta_out, self.V_out, self.max_time, self.max_memory)
+            budget, whose = self.max_time, "max_time"
+            if self.max_time == TIME_BUDGET and o["march"] != "magnus":  # (the march's default budget)
+                budget, whose = MARCH_TIME_BUDGET, f"the default budget of this path, {MARCH_TIME_BUDGET:g} s"
+            out = solve_moving_wall(pr, o, self.zeta_out, self.V_out, budget, self.max_memory, whose)
             if o["n_p"] is not None and self._tol_given:  # a fixed degree is not raised: refused over tol
                 est = out.info["error_estimate"]
                 worst = max(float(np.max(est[q])) for q in ("L1", "elastic_area", "plastic_area", "noncontact_area"))
