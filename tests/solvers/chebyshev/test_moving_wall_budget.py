@@ -84,3 +84,21 @@ def test_the_default_budget_is_named_when_no_max_time_is_given(monkeypatch):
         pf.solve(cheaper_scene(), "chebyshev", tol=1e-10, zeta_out=ZETA)
     fits = float(str(err.value).split("a tol of about ")[1].split()[0])
     assert 1e-10 < fits <= 0.1
+
+
+def test_auto_goes_to_chebyshev_where_fv_would_need_too_many_cells(fv_ref):
+    """auto at 1e-5 on this wall: fv first, whose next attempt would exceed the work cap (n_p x n_steps), then
+    chebyshev -- whose result meets tol against the reference; on a wall far from the load fv meets it alone."""
+    from persson_fp.solvers import auto
+
+    ref, unc = fv_ref
+    sol = pf.solve(cheaper_scene(), "auto", tol=1e-5, zeta_out=ZETA)
+    info = sol.info["auto"]
+    assert info["method"] == "chebyshev"
+    assert f"> {auto._FV_WALL_WORK:.3g}" in info["why"] and len(info["fv_attempts"]) >= 1
+    got = _areas(sol)
+    for q in AREAS:
+        assert abs(got[q] - ref[q]) <= 1e-5 + unc[q], q
+    psd = pf.SelfAffinePSD.from_rms_slope(4.0, H=0.8, q_l=1.0, q_r=1.0, q_s=10.0)  # (benchmarks/plasticity.py, B)
+    far = pf.ContactProblem(psd, p_bar=0.3, hardness=pf.hardness.PowerLaw(1.0, 0.2))
+    assert pf.solve(far, "auto", tol=1e-5).info["auto"]["method"] == "fv"
