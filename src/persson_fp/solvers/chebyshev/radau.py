@@ -282,6 +282,8 @@ def radau_march(
         for Vn in [v for v in nodes if v > V_a * (1.0 + 1e-12)] + (
             [V_b] if max(nodes, default=0) < V_b * (1 - 1e-13) else []
         ):
+            if deadline is not None and time.perf_counter() > deadline:
+                raise TimeoutError(f"the replayed march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
             y = _replay_step(A_of, V, Vn - V, y)
             V, steps = Vn, steps + 1
         return y, np.zeros(y.shape[0]), {"steps": steps, "rejected": 0, "solves": 2 * steps}
