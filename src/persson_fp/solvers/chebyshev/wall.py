@@ -458,8 +458,8 @@ def solve_moving_wall(
         if time_worst > share and time_worst > 0.5 * last_time:  # a tighter march did not lower it: round-off
             raise SolverError(
                 f"chebyshev (moving wall): the march's error estimate stays at {time_worst:.2e} (tol = {tol:.3g}) "
-                f"however small its steps (the round-off of the stiff operator at degree {n}); loosen tol or use "
-                "method='fv'"
+                f"however small its steps (the round-off of the stiff operator at degree {n}); loosen tol (about "
+                f"{3.0 * time_worst:.1e} is within reach) or use method='fv'"
             )
         last_time = time_worst if time_worst > share else math.inf
         if time_worst > share and tol_t > 1e-3 * tol:
