@@ -260,7 +260,8 @@ def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None,
         except TimeoutError as err:
             out_of_time(budget[1], f"moving wall: {err}")
         except MarchTooLong as err:
-            raise SolverError(_too_long(err, tol_t, budget)) from None
+            where = (float(zeta_of(pr, V)[0]), math.sqrt(V) / s_end)
+            raise SolverError(_too_long(err, tol_t, budget, where)) from None
         except RuntimeError as err:
             raise SolverError(f"chebyshev (moving wall): {err}; loosen tol or use method='fv'") from None
         for key in stats:
@@ -338,16 +339,18 @@ def _one_sided(A_of, lo: float, hi: float):
     return piece
 
 
-def _too_long(err, tol_t, budget) -> str:
-    """The message of a march forecast over its budget, naming the forecast and the tol that would fit."""
+def _too_long(err, tol_t, budget, where) -> str:
+    """The message of a march forecast over its budget, naming the forecast, the station (``where`` = (zeta, the
+    PDF's width sqrt(V) / sigma_Y there)) and the tol that would fit -- or, where the PDF is a sliver of the domain,
+    the remedy: a later first station."""
     fits = ""
     if math.isfinite(getattr(err, "reachable", math.nan)) and len(budget) > 3:
         fits = f"; tol = {budget[3]:.3g} is forecast to need too many steps, a tol of about "
         fits += f"{min(err.reachable * budget[3] / tol_t, 0.1):.1e} would fit"
-    return (
-        f"chebyshev (moving wall): {err} (budget: {_whose(budget)}){fits}; loosen tol, pass a larger max_time "
-        "(seconds) or use method='fv'"
-    )
+    remedy = "loosen tol, pass a larger max_time (seconds) or use method='fv'"
+    if where[1] < 1e-2:  # (the PDF a tiny fraction of the domain wide: no tol makes it cheap)
+        remedy = f"the PDF there is {where[1]:.1e} of sigma_Y wide: start zeta_out later (or use method='fv')"
+    return f"chebyshev (moving wall): {err} (budget: {_whose(budget)}){fits} (worst at zeta = {where[0]:.6g}); {remedy}"
 
 
 def _compare(main, other, p_bar):
