@@ -273,3 +273,20 @@ def test_chebyshev_wall_fuzz_quick(tmp_path):
     assert all(r["res_tol"][1] <= r["tol"] for r in rows if isinstance(r.get("res_tol"), tuple))
     text = (tmp_path / "chebyshev_wall_fuzz.md").read_text()
     assert "bad inputs: 11 of 11 raised a ValueError" in text
+
+
+@pytest.mark.slow  # the reference fv runs (~10 s)
+def test_moving_wall_auto_quick(tmp_path):
+    """auto against the best fixed fv on the moving wall (quick: zeta = 8, tol 1e-3 and 1e-4): every row within tol
+    of the reference (to its uncertainty), a best fv pair found and its true error within the target."""
+    rows = _module("moving_wall_auto").main(["--quick", "--output", str(tmp_path)])
+    csv_rows = _rows(tmp_path / "moving_wall_auto.csv")
+    assert len(csv_rows) == len(rows) == 2
+    for key in ("scene", "tol", "auto_method", "auto_time_s", "auto_true_L1", "best_fv_n_p", "best_fv_n_steps"):
+        assert key in csv_rows[0]
+    for r in rows:
+        floor = max(r["reference_area_uncertainty"], r["reference_L1_uncertainty"])
+        assert r["auto_true_L1"] <= r["tol"] + floor and r["auto_true_area"] <= r["tol"] + floor
+        assert r["best_fv_n_p"] != "" and r["best_fv_true_error"] <= r["target"]
+        assert r["ratio"] > 0 and r["best_fv_n_p"] in (25, 50, 100, 200, 400, 800)
+    assert "| 0.0001 |" in (tmp_path / "moving_wall_auto.md").read_text()

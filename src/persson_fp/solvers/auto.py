@@ -12,8 +12,10 @@ r"""``method="auto"`` and ``tol=``: ask for an accuracy, not a method.
   B2 = b(p) g(zeta), B1 = c(p) g(zeta), an adaptive Radau IIA march in V otherwise; where it declines (e.g.
   its march is forecast over its time budget) the problem falls through:
 * **A moving wall without a fudge factor, tol < 3e-7** (``_CHEB_WALL_TOL``): ``"chebyshev"`` on its front-fixed
-  Magnus march (:mod:`persson_fp.solvers.chebyshev.wall`), at most ``_CHEB_WALL_TIME`` seconds; where it declines or
-  runs out of time, ``"fv"`` as below (looser tols go to fv directly: there it is the faster).
+  Radau march (:mod:`persson_fp.solvers.chebyshev.wall`), at most ``_CHEB_WALL_TIME`` seconds; where it declines or
+  runs out of time, ``"fv"`` as below.  For 3e-7 <= tol <= 1e-4 fv goes first, while its next attempt's work
+  (n_p x n_steps) stays within ``_FV_WALL_WORK``: past it (a wall that moves fast next to the load, where fv needs
+  thousands of cells) ``"chebyshev"`` is tried, and fv resumes from its last resolution where that declines.
 * **No closed form** (a scale-dependent hardness, general coefficients): ``"fv"`` on the front-fixed engine,
   n_p = n_steps = n from the error models measured in ``benchmarks/plasticity.py`` and ``benchmarks/auto.py``
   (estimate ~ 2e-2 / n^2 for a moving wall, ~ 50 / n^2 for general coefficients, with n cells and n steps), refined
@@ -63,6 +65,12 @@ _CHEB_WALL_TOL = 3e-7
 _CHEB_WALL_TIME = 20.0
 """Seconds the chebyshev attempt on a moving wall may take before auto falls back to fv (where its march loses order
 next to a fast-moving wall it needs many steps)."""
+_FV_WALL_WORK = 150.0 * 150.0
+"""On a moving wall at 3e-7 <= tol <= 1e-4: the work n_p x n_steps of an fv attempt beyond which auto tries
+``"chebyshev"`` instead (``benchmarks/moving_wall_auto.py``: on the README's moving wall fv needs 230 cells and
+steps for 1e-4 and 812 for 1e-5, 0.3 s and 1.2 s, where chebyshev takes 0.3 s and 0.4 s and is 20-1000x more
+accurate than asked; on scene B of ``benchmarks/plasticity.py`` fv meets 1e-6 with 142, in 0.1 s, 3x faster than
+chebyshev)."""
 _C_FV_STEPS = 0.06
 """fv TR-BDF2 (compact4, graded steps), closed-form scenes: L1 ~ _C_FV_STEPS / n_steps^2 (speed_accuracy.md)."""
 _C_FV_CELLS = 6e-6 * 200.0**4
@@ -84,7 +92,32 @@ class _Plan:
     def solve(self, problem, zeta_out, tol, budget, max_time):
         """``"chebyshev"`` first where the plan says so, then fv on the front-fixed engine to tol."""
         declined, cheb_err = "", ""
-        cheb_budget = self.chebyshev_budget(problem, tol, budget)  # the spectral engine first, where it applies
+        resume = {}  # (fv's options where a work-capped fv attempt stopped for chebyshev)
+        if self.chebyshev == "wall" and problem.fudge.name == "none" and _CHEB_WALL_TOL <= tol <= 1e-4:
+            why = (
+                f"no closed form ({self.what}): finite volumes on the front-fixed engine, n cells and n steps from "
+                "the measured error model C/n^2, checked by a half-resolution partner run"
+            )
+            try:
+                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, max_work=_FV_WALL_WORK, **budget)
+            except _TooMuchWork as stop:
+                resume, tried = stop.options, stop.attempts
+            capped = dict(budget)
+            capped["max_time"] = min(_CHEB_WALL_TIME, budget["max_time"] or math.inf)
+            t_cheb = time.perf_counter()
+            try:
+                sol = _solve_chebyshev(problem, zeta_out, tol, capped)
+                sol.info["auto"]["why"] += (
+                    f"; fv first ({len(tried)} attempt(s)) would next need n_p x n_steps = "
+                    f"{_work(resume):.3g} > {_FV_WALL_WORK:.3g}"
+                )
+                sol.info["auto"]["fv_attempts"] = tried
+                return sol
+            except (ValueError, SolverError) as err:
+                declined, cheb_err = f"; method 'chebyshev' declined: {err}", str(err)
+                if max_time is not None:
+                    budget["max_time"] = max_time - (time.perf_counter() - t_cheb)
+        cheb_budget = None if resume else self.chebyshev_budget(problem, tol, budget)  # the spectral engine first
         if cheb_budget is not None:
             t_cheb = time.perf_counter()
             try:
@@ -103,7 +136,7 @@ class _Plan:
         )
         if max_time is None and budget["max_time"] is not None:  # (chebyshev's forecast declined: fv as long)
             try:
-                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget, **resume)
             except (ValueError, SolverError) as err:
                 if "max_time" not in str(err):
                     raise
@@ -117,7 +150,7 @@ class _Plan:
             try:
                 if budget["max_time"] <= 0.0:
                     raise SolverError("no time left")
-                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget, **resume)
             except (ValueError, SolverError) as err:
                 if "max_time" not in str(err) and str(err) != "no time left":
                     raise
@@ -126,7 +159,7 @@ class _Plan:
                     f"{spent:.3g} s and was declined ({cheb_err[:200]}), and fv then ran out of the rest "
                     f"({err}); ask for a looser tol or a larger max_time"
                 ) from None
-        return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget)
+        return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget, **resume)
 
     def errors(self, sol):
         """(worst L1, worst area error, kind) of a Solution: the solver's own estimate."""
@@ -257,14 +290,34 @@ def _refine(method, opts, problem, ratio):
     return out
 
 
+class _TooMuchWork(Exception):
+    """A work-capped :func:`solve_to_tol` stopped before an attempt over its ``max_work``: ``options`` that attempt's,
+    ``attempts`` those run."""
+
+    def __init__(self, options, attempts):
+        super().__init__(f"next attempt {options} over the work cap")
+        self.options, self.attempts = options, attempts
+
+
 def solve_to_tol(
-    problem, method: str, zeta_out, tol: float, why: str = "", *, max_memory=None, max_time=None, **options
+    problem,
+    method: str,
+    zeta_out,
+    tol: float,
+    why: str = "",
+    *,
+    max_memory=None,
+    max_time=None,
+    max_work=None,
+    **options,
 ):
     """Solve with ``method`` at a resolution chosen for ``tol``, check the error, refine until it meets ``tol``.
 
     ``max_memory`` / ``max_time`` bound every attempt (the solver's own estimate refuses one that would exceed
     them) and ``max_time`` also the whole refinement: a refinement whose predicted time (the last attempt's, scaled
-    by the growth of n_p x n_steps) would overrun it is refused with a :class:`~persson_fp.SolverError`."""
+    by the growth of n_p x n_steps) would overrun it is refused with a :class:`~persson_fp.SolverError`.  With
+    ``max_work`` (auto's own use), an attempt whose n_p x n_steps would exceed it is not run: ``_TooMuchWork``
+    carries its options."""
     from persson_fp.solvers.base import check_budgets, check_zeta_out
 
     t0 = time.perf_counter()
@@ -275,6 +328,8 @@ def solve_to_tol(
     attempts = []
     _check_cells(method, tol, opts, problem, attempts, math.inf, math.inf, "no attempt yet")
     for k in range(MAX_REFINE + 1):
+        if max_work is not None and _work(opts) > max_work:
+            raise _TooMuchWork(dict(opts), attempts)
         if max_time is not None and attempts:
             prev = attempts[-1]
             grow = _work(opts) / max(_work(prev["options"]), 1.0)

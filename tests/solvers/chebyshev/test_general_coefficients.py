@@ -59,6 +59,8 @@ def _errors(sol, exact):
     "seed, march", [(s, None) for s in range(4)] + [(s, m) for s in range(2) for m in ("radau", "magnus")]
 )
 def test_clock_and_march_against_the_image_solution(seed, march):
+    from persson_fp.solvers.chebyshev.solver import TIME_SHARE  # (the march's first tol, a multiple of tol)
+
     rng = np.random.default_rng(seed)
     kappa, a = float(rng.uniform(0.5, 2.0)), float(rng.uniform(0.3, 1.5))
     mu = float(rng.uniform(-1.0, 1.0)) / math.sqrt(kappa * VMAX)
@@ -71,10 +73,10 @@ def test_clock_and_march_against_the_image_solution(seed, march):
     assert L1 <= max(eL1, 1e-12) and dA <= max(eA, 1e-12), (L1, eL1, dA, eA)
     if march == "magnus":
         m = sol.info["march"]
-        assert m["steps"] >= 1 and m["expm"] >= 8 * m["steps"] - 2 and m["tol"] <= tol
+        assert m["steps"] >= 1 and m["expm"] >= 8 * m["steps"] - 2 and m["tol"] <= TIME_SHARE * tol
     elif march == "radau":
         m = sol.info["march"]
-        assert m["steps"] >= 1 and m["solves"] >= 3 * m["steps"] and m["tol"] <= tol
+        assert m["steps"] >= 1 and m["solves"] >= 3 * m["steps"] and m["tol"] <= TIME_SHARE * tol
 
 
 @pytest.mark.parametrize("seed", range(2))

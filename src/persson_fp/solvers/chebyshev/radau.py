@@ -92,6 +92,18 @@ stages of its two half steps, tau = c_i / 2 and 1/2 + c_i / 2 (Lagrange weights;
 0)."""
 _TI_RE, _TI_IM = np.ascontiguousarray(_TI[:2].real), np.ascontiguousarray(_TI[1].imag)
 _AI = np.linalg.inv(A_RK)
+_TI_MIX = np.stack([_TI_RE[0], _TI_RE[1], _TI_IM])
+"""(3, 3): the rows of T^-1 G in real arithmetic: the real eigenvalue's, the pair's real and imaginary parts."""
+_T_MIX = np.stack([_T[:, 0].real, 2.0 * _T[:, 1].real, -2.0 * _T[:, 1].imag], axis=1)
+"""(3, 3): T W back from (W0, Re W1, Im W1): Z_i = T_i0 W0 + 2 Re(T_i1 W1)."""
+
+
+def _mix(M, Z):
+    """M (k, j) applied along the first axis of Z (j, ...): a tensordot without its overhead (the stage arrays are
+    small, the call count large)."""
+    return (M @ Z.reshape(Z.shape[0], -1)).reshape((M.shape[0],) + Z.shape[1:])
+
+
 NEWTON_MAX = 12
 """Most simplified-Newton sweeps of one step (slower convergence: the step is retried at a smaller h)."""
 
@@ -181,14 +193,15 @@ def radau_step(A_of, V, h, y, As=None, frozen=None, guess=None, rel=None, stages
     last = np.inf
     dW0 = np.empty((nl, m, r))
     dW1 = np.empty((nl, m, r), dtype=complex)
+    AI_h = _AI / h
     for _ in range(NEWTON_MAX):
-        G = As @ (y[None] + Z) - np.tensordot(_AI / h, Z, 1)
-        R0 = np.tensordot(_TI_RE[0], G, 1)  # (T^-1 G: real arithmetic, the pair's parts apart)
-        R1 = np.tensordot(_TI_RE[1], G, 1) + 1j * np.tensordot(_TI_IM, G, 1)
+        G = As @ (y[None] + Z) - _mix(AI_h, Z)
+        R = _mix(_TI_MIX, G)  # (T^-1 G: real arithmetic, the pair's parts apart)
+        R0, R1 = R[0], R[1] + 1j * R[2]
         for lo, ((lu_r, piv_r), (lu_c, piv_c)) in enumerate(lus):
             dW0[lo] = dgetrs(lu_r, piv_r, R0[lo])[0]
             dW1[lo] = zgetrs(lu_c, piv_c, R1[lo])[0]
-        dZ = _T[:, 0].real[:, None, None, None] * dW0 + 2.0 * (_T[:, 1][:, None, None, None] * dW1).real
+        dZ = _mix(_T_MIX, np.stack([dW0, dW1.real, dW1.imag]))
         Z += dZ
         change = float(np.max(np.max(np.abs(dZ), axis=(0, 2)) / scale))  # (in units of the asked change)
         if change <= 1.0:
@@ -219,6 +232,7 @@ def radau_march(
     nodes=None,
     record: list | None = None,
     time_budget: float | None = None,
+    forecast_from: float = 0.0,
 ):
     """March dy/dV = A(V) y from V_a > 0 to V_b with adaptive Radau IIA steps (module docstring).
 
@@ -251,6 +265,9 @@ def radau_march(
     time_budget : float or None
         Seconds this march may take: after :data:`PREDICT_AFTER` accepted steps, a forecast above it (or above
         :data:`MAX_STEPS` steps) stops the march at once with :class:`MarchTooLong`.
+    forecast_from : float
+        No forecast before V reaches this (pressure^2): a march that starts at a jump of the operator (a break
+        point, not a narrow start) takes graded steps from there whose pace in ln V says nothing of the rest.
 
     Returns
     -------
@@ -265,6 +282,8 @@ def radau_march(
         for Vn in [v for v in nodes if v > V_a * (1.0 + 1e-12)] + (
             [V_b] if max(nodes, default=0) < V_b * (1 - 1e-13) else []
         ):
+            if deadline is not None and time.perf_counter() > deadline:
+                raise TimeoutError(f"the replayed march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
             y = _replay_step(A_of, V, Vn - V, y)
             V, steps = Vn, steps + 1
         return y, np.zeros(y.shape[0]), {"steps": steps, "rejected": 0, "solves": 2 * steps}
@@ -298,7 +317,7 @@ def radau_march(
             frozen = (ops[5], factor(ops[5], 0.5 * h))  # (the half steps share the operator at V + h/2, its LUs)
             # first guesses of the half steps' stages: the full step's collocation polynomial (its error is the
             # local error, so a sweep or two reach round-off); the propagated error needs 1e-4 of itself only
-            u = np.tensordot(_HALF_INTERP, st[0], 1)  # (6, n_loads, m): u(c_i / 2) - y, u(1/2 + c_i / 2) - y
+            u = _mix(_HALF_INTERP, st[0])  # (6, n_loads, m): u(c_i / 2) - y, u(1/2 + c_i / 2) - y
             half = radau_step(A_of, V, 0.5 * h, np.stack([y, e], axis=1), ops[3:6], frozen, u[:3], (1e-12, 1e-4))
             u_mid = u[2]  # (u(1/2) - y: the second half's guesses are the polynomial's increments from there)
             two = radau_step(
@@ -333,7 +352,7 @@ def radau_march(
             h *= 5.0 if worst == 0.0 else float(np.clip(0.9 * (target / worst) ** (1.0 / (EST_ORDER + 1)), 0.2, 5.0))
             if steps == PREDICT_AFTER // 2:  # (the time per try from here: the first tries carry first-call costs)
                 t_mark, tries_mark = time.perf_counter(), steps + rejected
-            if steps >= PREDICT_AFTER and V < V_b:
+            if steps >= PREDICT_AFTER and forecast_from <= V < V_b:
                 pace = (time.perf_counter() - t_mark) / max(steps + rejected - tries_mark, 1)
                 left = None if time_budget is None else time_budget - (time.perf_counter() - t_start)
                 _forecast(V, V_a, V_b, h, steps, rejected, pace, tol, left)

@@ -16,17 +16,19 @@ with :math:`dA_{pl}/dV = -(D\,\partial_x w + v w)(1)` (the flux out through the 
 (clustered around the start p_bar / s and at both walls).  The wall value is lifted, :math:`w = u + \beta A_{pl}\,x`
 with u = 0 at both walls (``_operator``), so the state :math:`y = [u(x_1 \dots x_{n-1}), A_{pl}, A_{non}]` obeys a
 *linear* system :math:`dy/dV = A(V)\,y` whose operator depends on V through s, s_V and :math:`\beta'` only (linear
-because S = 1; a fudge factor S(A) would make it nonlinear and is declined).  It is marched by the commutator-free
-fourth-order exponential step of :mod:`persson_fp.solvers.chebyshev.magnus` with its step control (step doubling, a
-companion march at the doubled steps for the estimate; ``magnus_march``), the partner runs replaying the main run's
-steps (``nodes=``) and refused early by its pace in ln V (``refusal="pace"``).  Where beta is constant in V
-(sigma_Y sigma_Y' proportional to V': sigma_Y ~
-zeta^(1 - H) on a self-affine spectrum of Hurst exponent H beyond its roll-off, the scene of
-``benchmarks/plasticity.py``) the march is 4th order (measured 4.0), and where beta changes slowly nearly so; where
-beta changes fast -- the wall outrunning diffusion -- the V-dependent factor on
-the wall-flux coupling costs the exponential steps their order (measured 2: the README's moving-wall example at small
-zeta), and tight tols exceed the step limit (a :class:`~persson_fp.SolverError`; ``method="auto"`` then uses
-``"fv"``).  A constant hardness gives beta = 0: the absorbing strip.
+because S = 1; a fudge factor S(A) would make it nonlinear and is declined).  It is marched by the adaptive Radau
+IIA steps of :mod:`persson_fp.solvers.chebyshev.radau` (order 5, L-stable, one real and one complex LU a step; the
+march's estimate the propagated sum of its step-doubling local estimates), the partner runs replaying the main run's
+steps (``nodes=``).  Where the spectrum rolls off (zeta_r = q_r / q_l) V'(zeta) has a kink, so d beta / dV and the
+operator jump there: the march stops at V(zeta_r) and restarts from it (``_Wall.breaks``), each piece's stages taking
+the operator's limit from within it -- a step across the jump is first order and its step-doubling estimate blind
+(measured on the README's moving wall: A_pl 8e-5 off at a march estimate of 4e-7; with the break, 1e-8 off).  The
+march forecasts its cost a tenth of the way through each piece and is refused at once if it would exceed its share of
+the time left (``max_time``; by default the chebyshev march budget, ``MARCH_TIME_BUDGET`` = 10 s), naming the tol
+that would fit; so is a refinement forecast over the time left.  ``march="magnus"`` takes the older commutator-free
+fourth-order exponential steps (:mod:`persson_fp.solvers.chebyshev.magnus`, 8 dense exponentials a step, order 2
+where beta changes fast; 26 s for tol = 1e-6 on the README's moving wall where Radau takes 0.8 s).  A constant
+hardness gives beta = 0: the absorbing strip.
 
 *Start.*  Every station starts afresh at V0 = V0_fraction x V from the heat kernel in p with its images across p = 0
 and the wall s(V0) (the strip's small-time solution; the wall, many widths away, is felt only through the images)
@@ -34,7 +36,7 @@ and the strip's areas at (s(V0), V0) (:func:`persson_fp.theory.strip.strip_quant
 
 *Error estimate* (``info["error_estimate"]``; per station and load), as for the other paths of
 :mod:`persson_fp.solvers.chebyshev`: the difference from a partner run at 3/4 of the degree, the difference from one
-started at 4 V0 divided by 4, the march's own estimate (twice the difference from its companion), the start's
+started at 4 V0 divided by 4, the march's own estimate, the start's
 quadrature error on the grid, a round-off floor (that of the general path, ``collocation.roundoff_floor``, not
 below 4 eps n^2) and the residual of the area balance A_el + A_pl + A_non
 = 1 (exact in the continuum; the collocated wall fluxes meet it to the discretisation error).  With ``tol`` the
@@ -53,21 +55,24 @@ from persson_fp.solvers.base import SolverOutput, zeta_of
 from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.magnus import magnus_march
+from persson_fp.solvers.chebyshev.radau import MarchTooLong, radau_march
 from persson_fp.theory.strip import strip_quantities
 
 __all__ = ["check_wall_problem", "solve_moving_wall", "N_MAX_WALL"]
 
 N_MAX_WALL = 160
-"""Largest degree the adaptive loop reaches on the moving wall (each Magnus step takes 8 exponentials)."""
+"""Largest degree the adaptive loop reaches on the moving wall."""
 
 
 def check_wall_problem(problem, opts) -> None:
     """``ValueError`` unless the moving wall is one this path solves: the homogenised problem, no fudge factor
     (``opts``: chebyshev's options)."""
     pr = problem
-    if opts["march"] not in (None, "magnus"):
+    if opts["march"] not in (None, "radau", "magnus"):
         got = opts["march"]
-        raise ValueError(f"march must be None or 'magnus' (a moving wall is always marched), got {got!r}")
+        raise ValueError(
+            f"march must be None, 'radau' or 'magnus' (a moving wall is always marched; None: 'radau'), got {got!r}"
+        )
     if pr.general:
         raise ValueError(
             "method 'chebyshev' solves a scale-dependent hardness (moving yield wall) for the homogenised "
@@ -82,6 +87,11 @@ def check_wall_problem(problem, opts) -> None:
         raise ValueError("method 'chebyshev' marches in V and needs dV/dzeta > 0 at zeta_max; use method='fv'")
 
 
+FORECAST_AFTER_BREAK = 1.05
+"""A march piece forecasts its cost once it is a tenth of its span in ln V on, and one that starts at a break of the
+operator (the roll-off's kink) not before this times its start: the first steps are graded (from the narrow start;
+from the break, where the wall value's derivative jumps and a boundary layer forms at the wall), and their pace in
+ln V over-forecasts (measured 2.5x after 8 steps on the README's moving wall; thousands of steps from a break)."""
 _DU = 1e-3
 """The step in ln zeta of the 5-point differences that give d beta / dV (truncation ~ _DU^4, round-off ~ eps / _DU)."""
 _ONE_SIDED = np.array([-25.0, 48.0, -36.0, 16.0, -3.0]) / 12.0
@@ -106,6 +116,35 @@ class _Wall:
     def _beta(self, z):
         pr = self.problem
         return 2.0 * pr.hardness.sigma(z) * pr.hardness.dsigma_dzeta(z) / pr.V_kernels.dV_dzeta(z)
+
+    def breaks(self, V_a: float, V_b: float) -> list:
+        """The V in (V_a, V_b) where the operator jumps: the roll-off's kink, where d beta / dV does (beta has
+        1 / V'(zeta), whose derivative jumps there)."""
+        if self.zeta_kink is None:
+            return []
+        Vk = self._V_kink = getattr(self, "_V_kink", None) or float(self.problem.V(self.zeta_kink))
+        return [Vk] if V_a < Vk < V_b else []
+
+    def many(self, Vs) -> np.ndarray:
+        """(len(Vs), 3): (s, s_V, d beta / dV) at the points ``Vs`` in one vectorised pass (one inversion zeta(V)
+        for all; the stencils chosen point by point as in ``__call__``)."""
+        pr = self.problem
+        Vs = np.asarray(Vs, dtype=float)
+        z = zeta_of(pr, Vs)
+        dV = pr.V_kernels.dV_dzeta(z)
+        if not np.all(dV > 0):
+            return np.array([self(float(v)) for v in Vs])  # (the point-wise path names the zeta)
+        u = np.log(z)
+        side = np.where(u < 2.5 * _DU, 1, np.where(u > math.log(pr.zeta_max) - 2.5 * _DU, -1, 0))
+        if self.zeta_kink is not None:
+            uk = math.log(self.zeta_kink)
+            side = np.where(np.abs(u - uk) < 2.5 * _DU, np.where(u >= uk, 1, -1), side)
+        dbeta_du = np.empty(u.size)
+        for sd in np.unique(side):
+            pick = side == sd
+            off, wt = _STENCILS[int(sd)]
+            dbeta_du[pick] = self._beta(np.exp(u[pick, None] + off * _DU).ravel()).reshape(-1, off.size) @ wt / _DU
+        return np.stack([pr.hardness.sigma(z), pr.hardness.dsigma_dzeta(z) / dV, dbeta_du / (z * dV)], axis=1)
 
     def __call__(self, V: float):
         hit = self._cache.get(V)
@@ -140,23 +179,39 @@ def _operator(grid, s: float, sV: float, dbeta: float):
                \qquad \dot A_{non} = D\,\partial_x u(0) + D\beta A_{pl},
 
     :math:`\mathcal L u = D u_{xx} + a (u + x u_x)`, D = 1 / (2 s^2), a = s_V / s (so that L x = 2 a x)."""
-    D, a, beta = 0.5 / (s * s), sV / s, 2.0 * s * sV
-    x = grid.p  # (the grid is in x)
-    L = D * grid.D2 + a * (np.eye(x.shape[1])[None] + x[:, :, None] * grid.D1)
-    nl, m = x.shape[0], x.shape[1] - 2
-    xi = x[:, 1:-1]
-    flux1 = D * grid.D1[:, -1, 1:-1]  # D u_x(1)
-    M = np.zeros((nl, m + 2, m + 2))
-    M[:, :m, :m] = L[:, 1:-1, 1:-1] + beta * xi[:, :, None] * flux1[:, None, :]
-    M[:, :m, m] = (2.0 * a * beta - dbeta + beta * beta * (D + a)) * xi
-    M[:, m, :m] = -flux1
-    M[:, m, m] = -beta * (D + a)
-    M[:, m + 1, :m] = D * grid.D1[:, 0, 1:-1]
-    M[:, m + 1, m] = D * beta
-    return M
+    return _Operators(grid).at(np.array([[s, sV, dbeta]]))[0]
 
 
-def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None):
+class _Operators:
+    """The operator of ``_operator`` as a sum of five fixed matrices of the grid with scalar factors of V
+    (D, a, beta D, the lift's source, A_pl's loss): ``at(rows)`` builds it at many V at once."""
+
+    def __init__(self, grid):
+        x = grid.p  # (the grid is in x)
+        nl, m = x.shape[0], x.shape[1] - 2
+        xi = x[:, 1:-1]
+        d1 = grid.D1[:, -1, 1:-1]  # u_x(1)
+        B = np.zeros((5, nl, m + 2, m + 2))
+        B[0, :, :m, :m] = grid.D2[:, 1:-1, 1:-1]
+        B[0, :, m, :m] = -d1
+        B[0, :, m + 1, :m] = grid.D1[:, 0, 1:-1]
+        B[1, :, :m, :m] = (np.eye(m + 2)[None] + x[:, :, None] * grid.D1)[:, 1:-1, 1:-1]
+        B[2, :, :m, :m] = xi[:, :, None] * d1[:, None, :]
+        B[2, :, m + 1, m] = 1.0
+        B[3, :, :m, m] = xi
+        B[4, :, m, m] = 1.0
+        self.basis = B.reshape(5, -1)
+        self.shape = (nl, m + 2, m + 2)
+
+    def at(self, rows) -> np.ndarray:
+        """(len(rows), n_loads, m + 2, m + 2) at the rows (s, s_V, d beta / dV) of :meth:`_Wall.many`."""
+        s, sV, dbeta = np.asarray(rows, dtype=float).T
+        D, a, beta = 0.5 / (s * s), sV / s, 2.0 * s * sV
+        f = np.stack([D, a, beta * D, 2.0 * a * beta - dbeta + beta * beta * (D + a), -beta * (D + a)], axis=1)
+        return (f @ self.basis).reshape((f.shape[0],) + self.shape)
+
+
+def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None, march="magnus"):
     """One run at degree n and start fraction ``frac`` to the stations ``V_out`` (on the steps ``nodes[k]`` per
     station if given; ``budget`` = (deadline, max_time)): a dict of per-station arrays, the grids and the accepted
     steps."""
@@ -165,7 +220,7 @@ def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None)
     shape = (n_st, nl)
     out = {key: np.zeros(shape) for key in ("A_el", "A_pl", "A_non", "F_el", "t_err", "unresolved", "beta", "roundoff")}
     out["W"], out["grids"], out["s"], out["nodes"] = np.zeros((n_st, nl, n + 1)), [], np.zeros(n_st), []
-    stats = {"steps": 0, "rejected": 0, "expm": 0}
+    stats = {"steps": 0, "rejected": 0, "expm" if march == "magnus" else "solves": 0}
     floor = 4.0 * np.finfo(float).eps * n * n
     for k, V in enumerate(V_out):
         V = float(V)
@@ -182,8 +237,12 @@ def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None)
         m = n - 1
         wts = grid.w[:, 1:-1]
 
-        def A_of(Vq, grid=grid):
-            return _operator(grid, *wall(Vq))
+        ops = _Operators(grid)
+
+        def A_of(Vq, ops=ops):
+            return ops.at(np.array([wall(Vq)]))[0]
+
+        A_of.many = lambda Vs, ops=ops: ops.at(wall.many(Vs))
 
         s_end, sV_end, _ = wall(V)
         lift = 1.0 + s_end * sV_end  # |A_pl| and the lift beta A_pl x (its L1: beta |A_pl| / 2) at the station
@@ -192,24 +251,17 @@ def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None)
             return np.sum(np.abs(d[:, :m]) * wts, axis=-1) + np.abs(d[:, m]) * lift
 
         y0 = np.concatenate([w0[:, 1:-1], q["plastic_area"][:, None] * np.ones((nl, 1)), np.zeros((nl, 1))], axis=1)
-        used = []  # (the accepted steps: the partners replay them)
+        used: list = []  # (the accepted steps: the partners replay them)
         try:
-            y, t_err, st = magnus_march(
-                A_of,
-                y0,
-                V0,
-                V,
-                tol_t,
-                norm,
-                floor,
-                None,
-                budget[0],
-                nodes=None if nodes is None else nodes[k],
-                record=used,
-                refusal="pace",
-            )
+            y, t_err, st = _march(
+                march, A_of, y0, V0, V, wall.breaks(V0, V), tol_t, norm, floor, budget,
+                None if nodes is None else nodes[k], used, (V_out.size - k) * (1.0 + 4.0 / 3.0),
+            )  # fmt: skip
         except TimeoutError as err:
             out_of_time(budget[1], f"moving wall: {err}")
+        except MarchTooLong as err:
+            where = (float(zeta_of(pr, V)[0]), math.sqrt(V) / s_end)
+            raise SolverError(_too_long(err, tol_t, budget, where)) from None
         except RuntimeError as err:
             raise SolverError(f"chebyshev (moving wall): {err}; loosen tol or use method='fv'") from None
         for key in stats:
@@ -232,6 +284,75 @@ def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None)
     return out
 
 
+def _march(march, A_of, y0, V0, V, breaks, tol_t, norm, floor, budget, nodes, record, runs):
+    """March y0 from V0 to V, stopping at every point of ``breaks`` (where the operator jumps: no step straddles
+    a jump, across which a step is first order and its step-doubling estimate blind), each piece held to its share
+    of ``tol_t`` in ln V.  A main run's Radau march (``nodes`` None) is held to its share of the time left,
+    ``(deadline - now) / runs`` (``runs``: the marches still to come, the partners' replays counted), and refused
+    at once if forecast over it (:class:`~persson_fp.solvers.chebyshev.radau.MarchTooLong`).  (y, estimate,
+    statistics)."""
+    points = [V0, *[b for b in breaks if V0 * (1.0 + 1e-9) < b < V * (1.0 - 1e-9)], V]
+    A_full = A_of
+    log_span = math.log(V / V0)
+    est, stats = 0.0, {}
+    y = y0
+    for a, b in zip(points[:-1], points[1:]):
+        tol_piece = tol_t * math.log(b / a) / log_span
+        if len(points) > 2:  # (a stage on the break takes the operator of this piece's side: one-sided limits)
+            A_of = _one_sided(A_full, a if a != V0 else -math.inf, b if b != V else math.inf)
+        replay = None if nodes is None else [v for v in nodes if a * (1.0 + 1e-12) < v <= b * (1.0 + 1e-12)]
+        if record and record[-1] == a:  # (the march records its start again)
+            record.pop()
+        if march == "magnus":
+            y, e, st = magnus_march(
+                A_of, y, a, b, tol_piece, norm, floor, None, budget[0], nodes=replay, record=record,
+                refusal="pace",
+            )  # fmt: skip
+        else:
+            share = None
+            if replay is None and budget[0] is not None:
+                share = (budget[0] - time.perf_counter()) / runs * math.log(b / a) / math.log(V / a)
+            try:
+                y, e, st = radau_march(
+                    A_of, y, a, b, tol_piece, norm, floor, None if a == V0 else 1e-5 * a, budget[0], nodes=replay,
+                    record=record, time_budget=share,
+                    forecast_from=a * max(FORECAST_AFTER_BREAK if a != V0 else 1.0, (b / a) ** 0.1),
+                )  # fmt: skip
+            except MarchTooLong as err:
+                err.reachable *= tol_t / tol_piece  # (in the units of the whole march's tol)
+                raise
+        est = est + e
+        for key, val in st.items():
+            stats[key] = stats.get(key, 0) + val
+    return y, est, stats
+
+
+def _one_sided(A_of, lo: float, hi: float):
+    """``A_of`` on the piece [lo, hi] between breaks: points within 1e-12 of an end (a stage on it) are moved
+    inside, so that the operator there is its limit from within the piece, not the other side's."""
+    lo_in, hi_in = lo * (1.0 + 1e-12), hi * (1.0 - 1e-12)
+
+    def piece(V):
+        return A_of(min(max(V, lo_in), hi_in))
+
+    piece.many = lambda Vs: A_of.many(np.clip(Vs, lo_in, hi_in))
+    return piece
+
+
+def _too_long(err, tol_t, budget, where) -> str:
+    """The message of a march forecast over its budget, naming the forecast, the station (``where`` = (zeta, the
+    PDF's width sqrt(V) / sigma_Y there)) and the tol that would fit -- or, where the PDF is a sliver of the domain,
+    the remedy: a later first station."""
+    fits = ""
+    if math.isfinite(getattr(err, "reachable", math.nan)) and len(budget) > 3:
+        fits = f"; tol = {budget[3]:.3g} is forecast to need too many steps, a tol of about "
+        fits += f"{min(err.reachable * budget[3] / tol_t, 0.1):.1e} would fit"
+    remedy = "loosen tol, pass a larger max_time (seconds) or use method='fv'"
+    if where[1] < 1e-2:  # (the PDF a tiny fraction of the domain wide: no tol makes it cheap)
+        remedy = f"the PDF there is {where[1]:.1e} of sigma_Y wide: start zeta_out later (or use method='fv')"
+    return f"chebyshev (moving wall): {err} (budget: {_whose(budget)}){fits} (worst at zeta = {where[0]:.6g}); {remedy}"
+
+
 def _compare(main, other, p_bar):
     """(L1 of w, i.e. of P in p; |dA_el|; |dA_pl|; |dA_non|; |dF| / p_bar) per station and load."""
     L1 = np.stack(
@@ -244,6 +365,32 @@ def _compare(main, other, p_bar):
     return L1, d["A_el"], d["A_pl"], d["A_non"], np.abs(main["F_el"] - other["F_el"]) / p_bar
 
 
+def _forecast_pass(took: float, was, now, budget, worst: float, tol: float, runs: int, where) -> None:
+    """Refuse before a refinement forecast over the time left: the last pass took ``took`` seconds at (degree,
+    march tol, start fraction) ``was``; the next, at ``now``, costs that times the degree's growth squared (the
+    operators and their LUs; measured between n^2 and n^3 at n = 40-100), the steps of the tighter march (order 5:
+    tol^(-1/5)) and of the longer span ln(1 / frac)."""
+    if budget[0] is None:
+        return
+    (n0, t0, f0), (n1, t1, f1) = was, now
+    grow = (n1 / n0) ** 2 * (t0 / t1) ** 0.2 * math.log(1.0 / f1) / math.log(1.0 / f0)
+    need, left = took * grow, budget[0] - time.perf_counter()
+    if need > left:
+        remedy = where[1] or (
+            (f"a tol of about {1.5 * worst:.1e} fits -- loosen tol to it, " if 1.5 * worst < 0.1 else "")
+            + "pass a larger max_time (seconds) or use method='fv'"
+        )
+        raise SolverError(
+            f"chebyshev (moving wall): after {runs} runs the error estimate is {worst:.2e} over tol = {tol:.3g} "
+            f"(worst at zeta = {where[0]:.6g}); the next refinement (degree {n1}) is forecast to take ~{need:.3g} s, "
+            f"over the {max(left, 0.0):.3g} s left of {_whose(budget)}; {remedy}"
+        )
+
+
+def _whose(budget) -> str:
+    return budget[2] if len(budget) > 2 and budget[2] != "max_time" else f"max_time = {budget[1]:.3g} s"
+
+
 def _wall_fraction(pr, V_out, tol: float) -> float:
     """The largest V0 / V(zeta_max) at which the start, and its partner at 4 V0, are k widths sqrt(V0) below the
     wall with exp(-k^2 / 2) < 1e-3 tol at the partner (the image start knows nothing of the wall's motion and of the
@@ -253,24 +400,34 @@ def _wall_fraction(pr, V_out, tol: float) -> float:
     return max((gap / k) ** 2 / float(np.max(V_out)), 1e-12)
 
 
-def solve_moving_wall(problem, opts, zeta_out, V_out, max_time: float, max_memory: float) -> SolverOutput:
+def solve_moving_wall(
+    problem, opts, zeta_out, V_out, max_time: float, max_memory: float, budget_name: str = "max_time"
+) -> SolverOutput:
     """Solve ``problem`` (a moving wall, no fudge factor) to ``opts["tol"]`` at the stations (zeta_out, V_out) within
-    ``max_time`` seconds and ``max_memory`` bytes (module docstring; ``opts``: chebyshev's options)."""
+    ``max_time`` seconds (``budget_name`` says whose budget it is, in refusals) and ``max_memory`` bytes (module
+    docstring; ``opts``: chebyshev's options).
+
+    The cost is forecast twice: each main march after its first steps (its share of the time left, against its
+    pace so far; :func:`~persson_fp.solvers.chebyshev.radau.radau_march`), and before every refinement (the last
+    pass's time scaled by the new degree squared and the steps the tighter march and earlier start need); a solve
+    forecast over the budget is refused at once, naming the forecast and the accuracy that fits."""
     o, pr = opts, problem
     tol = o["tol"]
     wall = _Wall(pr)
     frac = o["V0_fraction"] or min(float(np.clip(0.3 * math.sqrt(tol), 3e-5, 1e-2)), _wall_fraction(pr, V_out, tol))
     n = o["n_p"] or int(np.clip(8 + 8 * math.log10(1.0 / tol), 24, N_MAX_WALL))
     tol_t = tol / 4.0
-    budget = (time.perf_counter() + max_time, max_time)  # (deadline, max_time)
-    total = {"steps": 0, "rejected": 0, "expm": 0}
+    budget = (time.perf_counter() + max_time, max_time, budget_name, tol)  # (deadline, max_time, whose, tol)
+    march = o["march"] or "radau"
+    total = {"steps": 0, "rejected": 0, "expm" if march == "magnus" else "solves": 0}
     runs = 0
     last_time = math.inf  # the march's part of the last estimate where it was tightened after it
     while True:
         check_degree_memory(n, pr.n_loads, max_memory)
-        main = _run(pr, V_out, wall, n, frac, tol_t, budget)
-        grid_part = _run(pr, V_out, wall, max(8, int(round(0.75 * n))), frac, tol_t, budget, main["nodes"])
-        start_part = _run(pr, V_out, wall, n, 4.0 * frac, tol_t, budget, main["nodes"])
+        t_pass = time.perf_counter()
+        main = _run(pr, V_out, wall, n, frac, tol_t, budget, march=march)
+        grid_part = _run(pr, V_out, wall, max(8, int(round(0.75 * n))), frac, tol_t, budget, main["nodes"], march)
+        start_part = _run(pr, V_out, wall, n, 4.0 * frac, tol_t, budget, main["nodes"], march)
         runs += 3
         for r in (main, grid_part, start_part):
             for key in total:
@@ -300,11 +457,12 @@ def solve_moving_wall(problem, opts, zeta_out, V_out, max_time: float, max_memor
         share = tol / 3.0
         # (the partners march on the main run's steps: their differences measure the degree and the start alone)
         refined = False
+        was = (n, tol_t, frac)
         if time_worst > share and time_worst > 0.5 * last_time:  # a tighter march did not lower it: round-off
             raise SolverError(
                 f"chebyshev (moving wall): the march's error estimate stays at {time_worst:.2e} (tol = {tol:.3g}) "
-                "however small its steps (the round-off of the stiff exponentials at degree "
-                f"{n}); loosen tol or use method='fv'"
+                f"however small its steps (the round-off of the stiff operator at degree {n}); loosen tol (about "
+                f"{3.0 * time_worst:.1e} is within reach) or use method='fv'"
             )
         last_time = time_worst if time_worst > share else math.inf
         if time_worst > share and tol_t > 1e-3 * tol:
@@ -318,16 +476,18 @@ def solve_moving_wall(problem, opts, zeta_out, V_out, max_time: float, max_memor
             tol_t /= 4.0
         elif grid_worst > share or not refined:
             n = int(math.ceil(1.3 * n))
+        k = int(np.argmax(np.max(est["L1"], axis=1)))  # the station that fails
+        z_k, width = float(zeta_out[k]), math.sqrt(float(V_out[k])) / float(main["s"][k])
+        hint = "loosen tol or use method='fv'"
+        if width < 1e-2:  # (the PDF a tiny fraction of the domain wide: no degree resolves it)
+            hint = f"the PDF there is {width:.1e} of sigma_Y wide: start zeta_out later (or use method='fv')"
         if n > N_MAX_WALL:
-            k = int(np.argmax(np.max(est["L1"], axis=1)))  # the station that fails
-            z_k, width = float(zeta_out[k]), math.sqrt(float(V_out[k])) / float(main["s"][k])
-            hint = "loosen tol or use method='fv'"
-            if width < 1e-2:  # (the PDF a tiny fraction of the domain wide: no degree resolves it)
-                hint = f"the PDF there is {width:.1e} of sigma_Y wide: start zeta_out later (or use method='fv')"
             raise SolverError(
                 f"chebyshev (moving wall): the error estimate {worst:.3e} exceeds tol = {tol:.3g} at degree "
                 f"{N_MAX_WALL} (worst at zeta = {z_k:.6g}); {hint}"
             )
+        where = (z_k, None if width >= 1e-2 else hint)
+        _forecast_pass(time.perf_counter() - t_pass, was, (n, tol_t, frac), budget, worst, tol, runs, where)
         if time.perf_counter() > budget[0]:
             out_of_time(max_time, f"moving wall: {runs} runs done, degree {n}")
     load = main["F_el"] + main["s"][:, None] * main["A_pl"]
