@@ -1,6 +1,6 @@
 """``method="auto"`` on the moving wall against the best hand-picked fixed ``fv`` resolution.
 
-Scene W, the README's moving wall: ``SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1, q_r=2, q_s=128)``, p_bar = 0.03,
+Scene W, the moving wall: ``SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1, q_r=2, q_s=128)``, p_bar = 0.03,
 ``hardness=PowerLaw(sigma_1=0.035, n=0.2)`` (the wall 0.1 sqrt(V) above the load at zeta = 1, moving fast at small
 zeta), one station at zeta_max.  For each tol (1e-3 ... 1e-6):
 
@@ -35,7 +35,7 @@ from plasticity import moving_reference
 
 import persson_fp as pf
 
-SCENE = "W: README moving wall (p_bar = 0.03, sigma_Y = 0.035 zeta^0.2, zeta to 128)"
+SCENE = "W: moving wall (p_bar = 0.03, sigma_Y = 0.035 zeta^0.2, zeta to 128)"
 
 
 def scene(q_s: float = 128.0) -> pf.ContactProblem:

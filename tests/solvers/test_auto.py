@@ -97,7 +97,7 @@ def test_unreachable_tol_raises(monkeypatch):
 
 
 def test_auto_picks_a_resolution_the_engine_accepts():
-    """The README's moving-wall scene: the engine demands n_p >= 53; auto's first attempt must be above that
+    """The moving-wall scene W: the engine demands n_p >= 53; auto's first attempt must be above that
     (before: n_p = 50 and a ValueError)."""
     from persson_fp.solvers.auto import _first_options
     from persson_fp.solvers.front_fixed.moving_wall import min_cells

@@ -57,7 +57,7 @@ _C_GENERAL = 50.0
 _CELLS_PER_WIDTH = 4.0
 """The front-fixed engine's first attempt puts at least this many cells across the PDF's width sqrt(V) at the first
 station (the engine itself refuses fewer than one; with one or two a moving wall rings: a dip of -0.19 x the peak
-measured on the README's moving-wall scene at 66 cells)."""
+measured on the moving-wall scene W at 66 cells)."""
 _CHEB_WALL_TOL = 3e-7
 """A moving wall without a fudge factor goes to ``"chebyshev"`` first below this tol (its front-fixed Magnus march,
 :mod:`persson_fp.solvers.chebyshev.wall`): above it the second-order ``fv`` is the faster one (scene D of
@@ -67,7 +67,7 @@ _CHEB_WALL_TIME = 20.0
 next to a fast-moving wall it needs many steps)."""
 _FV_WALL_WORK = 150.0 * 150.0
 """On a moving wall at 3e-7 <= tol <= 1e-4: the work n_p x n_steps of an fv attempt beyond which auto tries
-``"chebyshev"`` instead (``benchmarks/moving_wall_auto.py``: on the README's moving wall fv needs 230 cells and
+``"chebyshev"`` instead (``benchmarks/moving_wall_auto.py``: on the moving-wall scene W fv needs 230 cells and
 steps for 1e-4 and 812 for 1e-5, 0.3 s and 1.2 s, where chebyshev takes 0.3 s and 0.4 s and is 20-1000x more
 accurate than asked; on scene B of ``benchmarks/plasticity.py`` fv meets 1e-6 with 142, in 0.1 s, 3x faster than
 chebyshev)."""

@@ -16,7 +16,7 @@ def scene_b():
 
 
 def readme_scene():
-    """The README's moving-wall example: sqrt(V) = 0.05, p_bar = 0.03, sigma_Y = 0.035 zeta^0.2 to zeta = 128."""
+    """The moving-wall scene W: sqrt(V) = 0.05, p_bar = 0.03, sigma_Y = 0.035 zeta^0.2 to zeta = 128."""
     psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=128.0)
     return pf.ContactProblem(psd, p_bar=0.03, hardness=pf.hardness.PowerLaw(sigma_1=0.035, n=0.2))
 

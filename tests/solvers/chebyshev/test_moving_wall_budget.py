@@ -1,4 +1,4 @@
-"""method="chebyshev" on the README's moving wall (sigma_Y = 0.035 zeta^0.2, p_bar = 0.03, a spectrum with its
+"""method="chebyshev" on the moving-wall scene W (sigma_Y = 0.035 zeta^0.2, p_bar = 0.03, a spectrum with its
 roll-off at zeta = 2): the Radau march stops at the roll-off's kink (where d sigma_Y / dV jumps), forecasts its cost
 and either returns a result within tol -- checked against fv's Richardson-extrapolated areas -- or is refused at once,
 naming the forecast (no wall-clock assertion: the refusal is asked for by a budget far below the solve's cost)."""
@@ -10,7 +10,7 @@ import persson_fp as pf
 
 
 def cheaper_scene():
-    """The README's moving wall; the tests stop at zeta = 8 (the kink at 2 inside the span)."""
+    """The moving-wall scene W; the tests stop at zeta = 8 (the kink at 2 inside the span)."""
     psd = pf.SelfAffinePSD.from_rms_slope(0.1, H=0.8, q_l=1.0, q_r=2.0, q_s=128.0)
     return pf.ContactProblem(psd, p_bar=0.03, hardness=pf.hardness.PowerLaw(sigma_1=0.035, n=0.2))
 

@@ -22,12 +22,12 @@ march's estimate the propagated sum of its step-doubling local estimates), the p
 steps (``nodes=``).  Where the spectrum rolls off (zeta_r = q_r / q_l) V'(zeta) has a kink, so d beta / dV and the
 operator jump there: the march stops at V(zeta_r) and restarts from it (``_Wall.breaks``), each piece's stages taking
 the operator's limit from within it -- a step across the jump is first order and its step-doubling estimate blind
-(measured on the README's moving wall: A_pl 8e-5 off at a march estimate of 4e-7; with the break, 1e-8 off).  The
+(measured on the moving-wall scene W: A_pl 8e-5 off at a march estimate of 4e-7; with the break, 1e-8 off).  The
 march forecasts its cost a tenth of the way through each piece and is refused at once if it would exceed its share of
 the time left (``max_time``; by default the chebyshev march budget, ``MARCH_TIME_BUDGET`` = 10 s), naming the tol
 that would fit; so is a refinement forecast over the time left.  ``march="magnus"`` takes the older commutator-free
 fourth-order exponential steps (:mod:`persson_fp.solvers.chebyshev.magnus`, 8 dense exponentials a step, order 2
-where beta changes fast; 26 s for tol = 1e-6 on the README's moving wall where Radau takes 0.8 s).  A constant
+where beta changes fast; 26 s for tol = 1e-6 on the moving-wall scene W where Radau takes 0.8 s).  A constant
 hardness gives beta = 0: the absorbing strip.
 
 *Start.*  Every station starts afresh at V0 = V0_fraction x V from the heat kernel in p with its images across p = 0
@@ -91,7 +91,7 @@ FORECAST_AFTER_BREAK = 1.05
 """A march piece forecasts its cost once it is a tenth of its span in ln V on, and one that starts at a break of the
 operator (the roll-off's kink) not before this times its start: the first steps are graded (from the narrow start;
 from the break, where the wall value's derivative jumps and a boundary layer forms at the wall), and their pace in
-ln V over-forecasts (measured 2.5x after 8 steps on the README's moving wall; thousands of steps from a break)."""
+ln V over-forecasts (measured 2.5x after 8 steps on the moving-wall scene W; thousands of steps from a break)."""
 _DU = 1e-3
 """The step in ln zeta of the 5-point differences that give d beta / dV (truncation ~ _DU^4, round-off ~ eps / _DU)."""
 _ONE_SIDED = np.array([-25.0, 48.0, -36.0, 16.0, -3.0]) / 12.0
