@@ -115,7 +115,7 @@ def test_general_coefficients_page_against_extrapolated_fv():
     sol2 = ns["sol2"]
     ref = richardson(ns["bent"], "contact_area")
     assert abs(float(sol2.contact_area[0]) - ref) <= float(sol2.error_estimate["contact_area"][0, 0])
-    # the moving wall: the page's fv run at 198 cells against 800 and 1600 cells, extrapolated
+    # the moving wall: the page's auto run against fv at 800 and 1600 cells, extrapolated
     s3 = ns["sol3"]
     for what in ("plastic_area", "elastic_area"):
         ref = richardson(ns["wall"], what)

@@ -59,7 +59,7 @@ _CELLS_PER_WIDTH = 4.0
 station (the engine itself refuses fewer than one; with one or two a moving wall rings: a dip of -0.19 x the peak
 measured on the moving-wall scene W at 66 cells)."""
 _CHEB_WALL_TOL = 3e-7
-"""A moving wall without a fudge factor goes to ``"chebyshev"`` first below this tol (its front-fixed Magnus march,
+"""A moving wall without a fudge factor goes to ``"chebyshev"`` first below this tol (its front-fixed Radau march,
 :mod:`persson_fp.solvers.chebyshev.wall`): above it the second-order ``fv`` is the faster one (scene D of
 ``benchmarks/plasticity.py``: fv 43 ms for 1e-6, chebyshev 0.14 s; for 1e-8 fv 3.4 s, chebyshev 1.5 s)."""
 _CHEB_WALL_TIME = 20.0
