@@ -247,3 +247,15 @@ def test_exact_full_contact_at_every_load_names_the_cause():
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # an ordinary load is quiet
         pf.exact(pf.ContactProblem.reference(p_bar_ratio=[0.5, 3.0]))
+
+
+@pytest.mark.parametrize(
+    "p, p_bar, tau, name",
+    [(np.nan, 1.0, 1.0, "p"), (1.0, -1.0, 1.0, "p_bar"), (1.0, 1.0, 0.0, "tau"), (1.0, 1.0, np.inf, "tau")],
+)
+def test_tail_mass_refuses_bad_input_by_name(p, p_bar, tau, name):
+    """A NaN p, a non-positive load or a zero / infinite variance is a ValueError naming it, never a NaN."""
+    from persson_fp.theory.image import tail_mass
+
+    with pytest.raises(ValueError, match=rf"^{name}\b"):
+        tail_mass(p, p_bar, tau)

@@ -138,8 +138,15 @@ def tail_mass(p, p_bar, tau) -> np.ndarray:
     \tfrac12[\mathrm{erfc}((p-\bar p)/s) - \mathrm{erfc}((p+\bar p)/s)]`, :math:`s = \sqrt{2\tau}`.
 
     What a domain cut at p = p_max loses (dimensionless); arguments broadcast, ``tau`` > 0 (pressure^2).
+
+    Raises
+    ------
+    ValueError
+        Naming ``p`` when it is not real and finite, ``p_bar`` or ``tau`` as :func:`area_from_tau` does (``tau``
+        must be > 0 here: at tau = 0 the tail is a step, not a number).
     """
-    p, p_bar, tau = (np.asarray(x, dtype=float) for x in (p, p_bar, tau))
+    p = as_float_array(p, "p")
+    p_bar, tau = _checked(p_bar, tau, tau_positive=True)
     s = np.sqrt(2.0 * tau)
     return 0.5 * (erfc((p - p_bar) / s) - erfc((p + p_bar) / s))
 
