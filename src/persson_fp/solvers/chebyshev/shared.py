@@ -55,6 +55,20 @@ N_SHARED_MAX = 300
 path (grids clustered at each load) runs instead."""
 
 
+def estimate_entry(est: dict, method: str, parts: dict) -> dict:
+    """The solver output's ``error_estimate`` from the per-quantity estimates ``est`` (the contact area is the
+    elastic area of a problem with walls), with the words of ``method`` and the estimate's ``parts``."""
+    return {
+        "L1": est["L1"],
+        "elastic_area": est["contact_area"],
+        "plastic_area": est["plastic_area"],
+        "noncontact_area": est["noncontact_area"],
+        "load": est["load"],
+        "method": method,
+        "parts": parts,
+    }
+
+
 def shared_memory(n: int, n_loads: int, n_stations: int) -> float:
     """Bytes a shared run at degree ``n`` holds at its peak: per load and station its P (8 (n + 1)) and ~25
     scalars (areas, loads, estimates of the run and its partner: 200), the temporaries of one chunk of
@@ -292,16 +306,12 @@ def solve_shared(solver, tol: float) -> SolverOutput | None:
         "V0_fraction": 0.0,
         "zeta0": np.ones(V_out.size),
         "runs": runs,
-        "error_estimate": {
-            "L1": est["L1"],
-            "elastic_area": est["contact_area"],
-            "plastic_area": est["plastic_area"],
-            "noncontact_area": est["noncontact_area"],
-            "load": est["load"],
-            "method": "|run - run at the last degree tried (or 3/4 degree)| + 2 x far-wall mass "
+        "error_estimate": estimate_entry(
+            est,
+            "|run - run at the last degree tried (or 3/4 degree)| + 2 x far-wall mass "
             "+ max(4 eps n^2, eps ||L dV||_1 (n/400)^2)",
-            "parts": {"time": np.zeros_like(A), "roundoff": np.broadcast_to(floor, A.shape).copy()},
-        },
+            {"time": np.zeros_like(A), "roundoff": np.broadcast_to(floor, A.shape).copy()},
+        ),
         "far_wall_mass": np.zeros_like(far) if hard else far,
         "load_law": law,
         "load_law_tolerance": est["load"] * pb,

@@ -64,7 +64,7 @@ from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.coefficients import Coefficients
 from persson_fp.solvers.chebyshev.magnus import magnus_march
 from persson_fp.solvers.chebyshev.radau import MarchTooLong, radau_march
-from persson_fp.solvers.chebyshev.shared import solve_shared
+from persson_fp.solvers.chebyshev.shared import estimate_entry, solve_shared
 from persson_fp.solvers.chebyshev.wall import check_wall_problem, solve_moving_wall
 
 __all__ = ["ChebyshevSolver"]
@@ -599,19 +599,15 @@ class ChebyshevSolver(Solver):
             "V0_fraction": frac,
             "zeta0": self.zeta_from_V(frac * self.V_out),
             "runs": runs,
-            "error_estimate": {
-                "L1": est["L1"],
-                "elastic_area": est["contact_area"],
-                "plastic_area": est["plastic_area"],
-                "noncontact_area": est["noncontact_area"],
-                "load": est["load"],
-                "method": "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + 2 x far-wall mass "
+            "error_estimate": estimate_entry(
+                est,
+                "|run - run at 3/4 degree| + |run - run from 4 V0| / 4 + 2 x far-wall mass "
                 "+ max(4 eps n^2, eps ||L dV||_1 (n/400)^2) "
                 "+ the start's quadrature error on the grid"
                 + (" + |march - companion march at double steps|" if self.path == "magnus" else "")
                 + (" + the Radau march's summed local estimates (step doubling)" if self.path == "radau" else ""),
-                "parts": {"time": t_err, "roundoff": floor},
-            },
+                {"time": t_err, "roundoff": floor},
+            ),
             "far_wall_mass": np.zeros_like(far) if hard else far,
             # d/dV int p P dp = int c P dp - p_max J(p_max), integrated alongside (checked by the invariants): the
             # catch for a result whose partners agree on something wrong (e.g. a PDF the grid cannot follow)
