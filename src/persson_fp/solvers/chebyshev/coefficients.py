@@ -277,18 +277,19 @@ class Coefficients:
         if self.separable:
             return [self.at(p)] * len(Vs)
         pr, out = self.problem, []
-        for z in zeta_of(pr, Vs):
-            z = float(z)
-            if not float(pr.V_kernels.dV_dzeta(z)) > 0:
-                return [self.at(p, float(V)) for V in Vs]  # (raises naming zeta)
-            c, b = self._fast_per_V(p, z)
+        zs = np.asarray(zeta_of(pr, Vs), dtype=float)
+        gs = np.asarray(pr.V_kernels.dV_dzeta(zs), dtype=float)  # (one evaluation for all of them)
+        if not np.all(gs > 0):
+            return [self.at(p, float(V)) for V in Vs]  # (raises naming zeta)
+        for z, g in zip(zs.tolist(), gs.tolist()):
+            c, b = self._fast_per_V(p, z, g)
             out.append((b, c if self.drift else None))
         return out
 
-    def _fast_per_V(self, p, z):
+    def _fast_per_V(self, p, z, g=None):
         """:meth:`_per_V` for the march's inner loop: the user's callables called directly where both return finite
         float arrays of the shape of ``p`` (B2 >= 0), the checked ``problem.coefficients`` otherwise (which names a
-        bad value and where)."""
+        bad value and where); ``g``: dV/dzeta at z where the caller has it."""
         pr = self.problem
         f1, f2 = getattr(pr, "B1_fun", None), getattr(pr, "B2_fun", None)
         if f2 is None:  # (no callable B2: the homogenised problem, or B2 = dV/dzeta)
@@ -303,7 +304,7 @@ class Coefficients:
                 return self._per_V(p, z)
         if not (np.isfinite(B2.sum()) and B2.min() >= 0.0 and (B1 is None or np.isfinite(B1.sum()))):
             return self._per_V(p, z)
-        g = float(pr.V_kernels.dV_dzeta(z))
+        g = float(pr.V_kernels.dV_dzeta(z)) if g is None else g
         return (None if B1 is None else B1 / g), B2 / g
 
     def envelope(self, p):

@@ -218,6 +218,21 @@ def radau_step(A_of, V, h, y, As=None, frozen=None, guess=None, rel=None, stages
     return out[:, :, 0] if single else np.swapaxes(out, 1, 2)
 
 
+SWEEP_SHARE = 1e-3
+"""The stage sweeps of a step stop once their change is below this share of the step's local error target (in the
+march's norm; never looser than 1e-7 nor tighter than 1e-12 of the state's largest entry): converging them to
+round-off bought nothing the error estimates could see, at one or two sweeps a step."""
+
+
+def _sweep_rel(y, unit, target):
+    """The sweeps' stopping threshold relative to max |y|: ``SWEEP_SHARE`` x ``target`` over ``unit`` max |y|, where
+    ``unit`` is the norm of a state of ones (a max-norm change c moves the norm by at most c x unit)."""
+    big = float(np.max(np.abs(y))) * unit
+    if not big > 0.0:
+        return 1e-12
+    return float(np.clip(SWEEP_SHARE * target / big, 1e-12, 1e-7))
+
+
 def radau_march(
     A_of,
     y0,
@@ -277,6 +292,8 @@ def radau_march(
     """
     t_start = time.perf_counter()
     V, y = float(V_a), np.array(y0, dtype=float)
+    log_span = math.log(V_b / V_a)
+    unit = float(np.max(norm(np.ones_like(y))))  # (the norm of a unit max-norm change: the sweeps' scale)
     if nodes is not None:
         steps = 0
         for Vn in [v for v in nodes if v > V_a * (1.0 + 1e-12)] + (
@@ -284,10 +301,10 @@ def radau_march(
         ):
             if deadline is not None and time.perf_counter() > deadline:
                 raise TimeoutError(f"the replayed march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
-            y = _replay_step(A_of, V, Vn - V, y)
+            rel = _sweep_rel(y, unit, tol * math.log1p((Vn - V) / V) / log_span)
+            y = _replay_step(A_of, V, Vn - V, y, rel=rel)
             V, steps = Vn, steps + 1
         return y, np.zeros(y.shape[0]), {"steps": steps, "rejected": 0, "solves": 2 * steps}
-    log_span = math.log(V_b / V_a)
     div = EST_DIV
     if record is not None:
         record.append(V)
@@ -313,16 +330,17 @@ def radau_march(
         try:
             ops = operators(A_of, np.concatenate([V + C * h, V + 0.5 * C * h, V + 0.5 * h + 0.5 * C[:2] * h]))
             st: list = []
-            full = radau_step(A_of, V, h, y, ops[:3], (ops[5], factor(ops[5], h)), stages=st)
+            rel = _sweep_rel(y, unit, tol * math.log1p(h / V) / log_span)  # (the local target, relax = 1)
+            full = radau_step(A_of, V, h, y, ops[:3], (ops[5], factor(ops[5], h)), rel=(rel,), stages=st)
             frozen = (ops[5], factor(ops[5], 0.5 * h))  # (the half steps share the operator at V + h/2, its LUs)
             # first guesses of the half steps' stages: the full step's collocation polynomial (its error is the
             # local error, so a sweep or two reach round-off); the propagated error needs 1e-4 of itself only
             u = _mix(_HALF_INTERP, st[0])  # (6, n_loads, m): u(c_i / 2) - y, u(1/2 + c_i / 2) - y
-            half = radau_step(A_of, V, 0.5 * h, np.stack([y, e], axis=1), ops[3:6], frozen, u[:3], (1e-12, 1e-4))
+            half = radau_step(A_of, V, 0.5 * h, np.stack([y, e], axis=1), ops[3:6], frozen, u[:3], (rel, 1e-4))
             u_mid = u[2]  # (u(1/2) - y: the second half's guesses are the polynomial's increments from there)
             two = radau_step(
                 A_of, V + 0.5 * h, 0.5 * h, half, np.concatenate([ops[6:], ops[2:3]]), frozen, u[3:] - u_mid,
-                (1e-12, 1e-4),
+                (rel, 1e-4),
             )  # fmt: skip
         except _NoConvergence:
             rejected += 1
@@ -363,22 +381,24 @@ def radau_march(
     return y, norm(e), {"steps": steps, "rejected": rejected, "solves": 3 * (steps + rejected)}
 
 
-def _replay_step(A_of, V, h, y, depth=0):
+def _replay_step(A_of, V, h, y, depth=0, rel=None):
     """A replayed step (two half steps sharing the operator at V + h/2 and its LUs); where their stage sweeps do not
     converge (a partner's grid, stiffer than the main run's), each half with its own operator, then in halves again
     (at most 3 times) -- the replay's steps are fixed, so it cannot shorten them otherwise."""
     ops = operators(A_of, np.concatenate([V + 0.5 * C * h, V + 0.5 * h + 0.5 * C * h]))
     try:
         frozen = (ops[2], factor(ops[2], 0.5 * h))
-        return radau_step(A_of, V + 0.5 * h, 0.5 * h, radau_step(A_of, V, 0.5 * h, y, ops[:3], frozen), ops[3:], frozen)
+        y1 = radau_step(A_of, V, 0.5 * h, y, ops[:3], frozen, rel=rel)
+        return radau_step(A_of, V + 0.5 * h, 0.5 * h, y1, ops[3:], frozen, rel=rel)
     except _NoConvergence:
         try:
-            return radau_step(A_of, V + 0.5 * h, 0.5 * h, radau_step(A_of, V, 0.5 * h, y, ops[:3]), ops[3:])
+            y1 = radau_step(A_of, V, 0.5 * h, y, ops[:3], rel=rel)
+            return radau_step(A_of, V + 0.5 * h, 0.5 * h, y1, ops[3:], rel=rel)
         except _NoConvergence:
             if depth >= 3:
                 raise
-            y = _replay_step(A_of, V, 0.5 * h, y, depth + 1)
-            return _replay_step(A_of, V + 0.5 * h, 0.5 * h, y, depth + 1)
+            y = _replay_step(A_of, V, 0.5 * h, y, depth + 1, rel)
+            return _replay_step(A_of, V + 0.5 * h, 0.5 * h, y, depth + 1, rel)
 
 
 def _forecast(V, V_a, V_b, h, steps, rejected, pace, tol, time_budget):

@@ -263,15 +263,13 @@ class ChebyshevSolver(Solver):
             else:
                 m = n - 1
 
-                def A_of(Vq, grid=grid):
-                    b_n, c_n = cf.at(grid.p, Vq)
-                    return collocation.with_wall_rows(grid, collocation.generator(grid, b_n, c_n), b_n, c_n)
+                ops = collocation.WallRowOperators(grid)
 
-                def many(Vs, grid=grid):  # (the Radau march's stages: one inversion zeta(V) for all)
-                    return np.stack(
-                        [collocation.with_wall_rows(grid, collocation.generator(grid, b, c), b, c)
-                         for b, c in cf.at_many(grid.p, Vs)]
-                    )  # fmt: skip
+                def A_of(Vq, grid=grid, ops=ops):
+                    return ops([cf.at(grid.p, Vq)])[0]
+
+                def many(Vs, grid=grid, ops=ops):  # (the Radau march's stages: one inversion zeta(V) for all)
+                    return ops(cf.at_many(grid.p, Vs))
 
                 A_of.many = many
 
