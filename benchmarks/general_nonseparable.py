@@ -5,7 +5,8 @@ Scenes (spectrum of ``pf.ContactProblem.reference()``, p_bar = 0.5 sqrt(V(zeta_m
 b(p) g(zeta), so ``auto`` takes method ``"chebyshev"``'s march (``info["path"]``):
 
 - **A**: B2 = dV/dzeta (1 + 0.2 (p / p_bar) ln zeta);
-- **B**: B2 = dV/dzeta (1 + p zeta / (zeta_max p_bar)).
+- **B**: B2 = dV/dzeta (1 + p zeta / (zeta_max p_bar));
+- **S**: B2 = dV/dzeta (1 + p / (2 p_bar)), which does separate (``auto`` takes the exact exponential), for scale.
 
 Reference (written here, independent of the package's time integrators): Chebyshev collocation in p on a tan map
 clustered at p_bar (not the engine's sinh map), degree 180, far wall at p_bar + 40 sqrt(V); the small-time start of
@@ -14,11 +15,13 @@ u = ln V by 600 fixed three-stage Radau IIA steps written here (order 5; the sta
 reference (degree 140, V_s = 2e-5 V, 400 steps) gives its uncertainty (reported).
 
 Peers, 40-line Crank--Nicolsons written here, given *more* than the engine: the reference itself at V_p = 2e-3 V
-(cell averages) and the same far wall.  Uniform cells on [0, L], P = 0 on both walls (ghost cells), the
-conservative form dP/dV = 1/2 d^2(b P)/dp^2 with b = B2 / V' at the half step, m equal steps after a Rannacher start
-(the first step as two backward-Euler half steps), tridiagonal solves (``scipy.linalg.solve_banded``).  "CN +
-Richardson": (4 P(2n cells, 2m steps) - P(n, m)) / 3 on the coarse cells.  Grids double (n = 100 ... 25 600, m =
-n / 4); a family stops once a call takes over ~5 s.
+(cell averages).  Uniform cells on [0, L], P = 0 on both walls (ghost cells), the conservative form
+dP/dV = 1/2 d^2(b P)/dp^2 with b = B2 / V' at the half step, m equal steps after a Rannacher start (the first step
+as two backward-Euler half steps), tridiagonal solves (``scipy.linalg.solve_banded``).  "CN + Richardson":
+(4 P(2n cells, 2m steps) - P(n, m)) / 3 on the coarse cells.  Each peer is the best of its settings, hand-picked
+after the fact: grids double (n = 100 ... 25 600) with m = n / 8, n / 4 or n / 2 steps, on a far wall at
+L = p_bar + 12 sqrt(V) (cheaper: fewer empty cells; it truncates the tail at ~4e-5 on scene A) or at the
+reference's p_bar + 40 sqrt(V); a family (one m / n and one wall) stops once a call takes over ~5 s.
 
 Times: medians of interleaved rounds of whole calls (every configuration once per round, ``--repeats`` rounds, the
 first call of each not timed); calls over 2 s are timed once.  L1 = int |P0 - reference| dp at zeta_max (cells:
@@ -51,6 +54,11 @@ TARGETS = (1e-4, 1e-6, 1e-8)
 V_PEER = 2e-3
 """The peers start from the reference at this fraction of V(zeta_max)."""
 L_K = 40.0
+"""The reference's far wall, p_bar + L_K sqrt(V(zeta_max))."""
+PEER_WALLS = (12.0, 40.0)
+"""The peers' far walls, p_bar + (each) sqrt(V(zeta_max))."""
+PEER_STEPS = (8, 4, 2)
+"""The peers' steps: m = n / (each)."""
 
 
 def scenes():
@@ -63,6 +71,9 @@ def scenes():
         ),
         "B: B2 = V'(1 + p zeta/(zeta_max p_bar))": pf.FokkerPlanckProblem(
             psd, p_bar=pb, B2=lambda p, z: psd.dV_dzeta(z) * (1 + p * z / (zm * pb))
+        ),
+        "S: B2 = V'(1 + p/(2 p_bar))": pf.FokkerPlanckProblem(
+            psd, p_bar=pb, B2=lambda p, z: psd.dV_dzeta(z) * (1 + p / (2 * pb))
         ),
     }
 
@@ -237,25 +248,30 @@ def main(argv=None):
         u = max(abs(A_ref - A_ref2), float(np.trapezoid(np.abs(pdf(q) - pdf2(q)), q)))
         log(f"{name}: reference in {time.perf_counter() - t0:.1f} s, uncertainty {u:.2g}")
         sizes = [100 * 2**k for k in range(0, 9)]
-        starts = {n: cell_avg(pdf_start, n, L) for n in sizes + [2 * sizes[-1]]}
-        refs = {n: cell_avg(pdf, n, L) for n in sizes}
+        walls = {lk: pb + lk * np.sqrt(V) for lk in PEER_WALLS}
+        starts = {(lk, n): cell_avg(pdf_start, n, Lp) for lk, Lp in walls.items() for n in sizes + [2 * sizes[-1]]}
+        refs = {(lk, n): cell_avg(pdf, n, Lp) for lk, Lp in walls.items() for n in sizes}
         configs = [
-            ("persson-fp auto", f"tol={tol:g}", (lambda tol=tol: pf.solve(pr, method="auto", tol=tol)))
+            ("persson-fp auto", f"tol={tol:g}", (lambda tol=tol: pf.solve(pr, method="auto", tol=tol)), None)
             for tol in TARGETS
         ]
-        for n in sizes[1:] if not args.quick else sizes[1:4]:
-            configs.append(
-                ("hand CN", f"cells={n}, steps={n // 4}", (lambda n=n: hand_cn(pr, starts[n], L, n, n // 4)))
-            )
-        for n in sizes[:-1] if not args.quick else sizes[:3]:
-            configs.append(("hand CN + Richardson", f"cells={n}+{2 * n}, steps={n // 4}+{n // 2}",
-                            (lambda n=n: hand_cn_richardson(pr, starts, L, n, n // 4))))  # fmt: skip
+        for lk, Lp in walls.items():
+            st = {n: starts[(lk, n)] for n in sizes + [2 * sizes[-1]]}
+            for r in PEER_STEPS:
+                for n in sizes[1:] if not args.quick else sizes[1:4]:
+                    configs.append(("hand CN", f"cells={n}, steps={n // r}, wall={lk:g}",
+                                    (lambda n=n, r=r, st=st, Lp=Lp: hand_cn(pr, st[n], Lp, n, n // r)),
+                                    ("hand CN", lk, r)))  # fmt: skip
+                for n in sizes[:-1] if not args.quick else sizes[:3]:
+                    configs.append(("hand CN + Richardson", f"cells={n}+{2 * n}, steps={n // r}+{2 * (n // r)}, "
+                                    f"wall={lk:g}", (lambda n=n, r=r, st=st, Lp=Lp: hand_cn_richardson(pr, st, Lp, n,
+                                    n // r)), ("hand CN + Richardson", lk, r)))  # fmt: skip
         times = {c[:2]: [] for c in configs}
         result, once, stopped = {}, set(), set()
         for r in range(rounds + 1):  # round 0: the first calls (untimed unless over 2 s)
-            for method, setting, fn in configs:
+            for method, setting, fn, family in configs:
                 key = (method, setting)
-                if key in once or (method in stopped and key not in result):
+                if key in once or (family in stopped and key not in result):
                     continue  # (timed once; or a family stopped once a call took over ~5 s: the next doubles)
                 t = time.perf_counter()
                 try:
@@ -269,10 +285,10 @@ def main(argv=None):
                     times[key].append(dt)
                 if dt > 2.0:
                     once.add(key)
-                if dt > 5.0 and method != "persson-fp auto":
-                    stopped.add(method)
+                if dt > 5.0 and family is not None:
+                    stopped.add(family)
                 result[key] = res
-        for method, setting, _ in configs:
+        for method, setting, _, family in configs:
             key = (method, setting)
             if key not in result:
                 continue
@@ -287,8 +303,8 @@ def main(argv=None):
                     area_error=abs(float(np.ravel(res.contact_area)[-1]) - A_ref), status="ok",
                 )  # fmt: skip
             else:
-                n = int(setting.split("=")[1].split(",")[0].split("+")[0])
-                row.update(L1=float(np.sum(np.abs(res - refs[n])) * L / n), status="ok")
+                n, lk = int(setting.split("=")[1].split(",")[0].split("+")[0]), family[1]
+                row.update(L1=float(np.sum(np.abs(res - refs[(lk, n)])) * walls[lk] / n), status="ok")
             log(f"{name} | {method} | {setting}: {t * 1e3:.4g} ms, L1 {row['L1']:.3g}")
             rows.append(row)
     write_csv(os.path.join(out, "general_nonseparable.csv"), rows)

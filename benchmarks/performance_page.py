@@ -195,6 +195,21 @@ def _fastest(rows, targets):
     return cells
 
 
+def _asked(rows, targets):
+    """The whole call made with ``tol`` = each target: its time if it met it, else what happened."""
+    cells = []
+    for t in targets:
+        r = next((r for r in rows if r["setting"] == f"tol={t:g}"), None)
+        if r is None:
+            cells.append("–")
+        elif r["status"] != "ok":
+            cells.append("refused")
+        else:
+            met = r["L1"] and float(r["L1"]) <= t
+            cells.append(_time(r["call_time_s"]) + ("" if met else f" (missed: L1 {_sig(float(r['L1']), 2)})"))
+    return cells
+
+
 def general():
     rows = _rows("general_engine.csv")
     targets = (1e-4, 1e-6, 1e-8)
@@ -208,7 +223,10 @@ def general():
     for scene in sorted({r["scene"] for r in ns}):
         for method in ("persson-fp auto", "hand CN", "hand CN + Richardson"):
             sel = [r for r in ns if r["scene"] == scene and r["method"] == method]
-            ntable.append([scene, method, *_fastest(sel, targets)])
+            if method == "persson-fp auto":  # (the call asked for that tol: what a user gets)
+                ntable.append([scene, f"{method} (tol = target)", *_asked(sel, targets)])
+            else:  # (the best of the peer's settings, picked after the fact)
+                ntable.append([scene, f"{method} (best setting)", *_fastest(sel, targets)])
     return [
         "",
         "## General coefficients: how fast is the general engine?",
@@ -220,8 +238,11 @@ def general():
         "",
         _table(["problem", "method", "L1 ≤ 1e-4", "L1 ≤ 1e-6", "L1 ≤ 1e-8"], table),
         "",
-        "Coefficients that do not separate into a function of p times a function of ζ, against a hand-written",
-        "Crank–Nicolson scheme given the same start information (with and without Richardson extrapolation):",
+        "Coefficients that do not separate into a function of p times a function of ζ (scenes A and B; scene S",
+        "separates, for scale), against a hand-written Crank–Nicolson scheme started from the exact density at",
+        "V = 0.002 V(ζ_max) (with and without Richardson extrapolation). persson-fp: the call with `tol` set to",
+        "the target; each peer: the fastest of its settings (cells, steps, far wall) that reaches the target,",
+        "picked after the fact — a user of the peer would not know which:",
         "",
         "Regenerate: `python benchmarks/general_nonseparable.py`.",
         "",

@@ -90,6 +90,21 @@ _HALF_INTERP = np.array(
 """(6, 3): the collocation polynomial of a step (through 0 at tau = 0 and the stage increments at c_i) at the
 stages of its two half steps, tau = c_i / 2 and 1/2 + c_i / 2 (Lagrange weights; the weight of tau = 0 multiplies
 0)."""
+EXTRAPOLATE_MAX = 2.5
+"""The longest next step, in units of the last, whose first stage guesses extrapolate the last step's collocation
+polynomial (Hairer & Wanner, Sec. IV.8: starting values); longer ones start from the explicit Euler stages."""
+
+
+def _extrapolation(r: float) -> np.ndarray:
+    """(3, 3): the last step's collocation polynomial u (through 0 at tau = 0 and its stage increments at c_i, tau in
+    units of that step) at the next step's stages tau = 1 + r c_j, less u(1): the next step's stage increments."""
+    t = 1.0 + r * C
+    W = np.array([[np.prod([(tj - _NODES[k]) / (_NODES[i] - _NODES[k]) for k in range(4) if k != i])
+                   for i in range(1, 4)] for tj in t])  # fmt: skip
+    W[:, 2] -= 1.0
+    return W
+
+
 _TI_RE, _TI_IM = np.ascontiguousarray(_TI[:2].real), np.ascontiguousarray(_TI[1].imag)
 _AI = np.linalg.inv(A_RK)
 _TI_MIX = np.stack([_TI_RE[0], _TI_RE[1], _TI_IM])
@@ -295,14 +310,14 @@ def radau_march(
     log_span = math.log(V_b / V_a)
     unit = float(np.max(norm(np.ones_like(y))))  # (the norm of a unit max-norm change: the sweeps' scale)
     if nodes is not None:
-        steps = 0
+        steps, prev = 0, []  # (prev: the last half step's (h, stage increments), the next one's first guess)
         for Vn in [v for v in nodes if v > V_a * (1.0 + 1e-12)] + (
             [V_b] if max(nodes, default=0) < V_b * (1 - 1e-13) else []
         ):
             if deadline is not None and time.perf_counter() > deadline:
                 raise TimeoutError(f"the replayed march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
             rel = _sweep_rel(y, unit, tol * math.log1p((Vn - V) / V) / log_span)
-            y = _replay_step(A_of, V, Vn - V, y, rel=rel)
+            y = _replay_step(A_of, V, Vn - V, y, rel=rel, prev=prev)
             V, steps = Vn, steps + 1
         return y, np.zeros(y.shape[0]), {"steps": steps, "rejected": 0, "solves": 2 * steps}
     div = EST_DIV
@@ -315,6 +330,7 @@ def radau_march(
     local_sum = np.zeros(y.shape[0])
     last_reject = math.inf
     noise_level = floor
+    prev = None  # (h, stage increments) of the last accepted full step
     while V < V_b:
         if deadline is not None and time.perf_counter() > deadline:
             raise TimeoutError(f"the march stopped at V = {V:.6g} of {V_b:.6g} after {steps} steps")
@@ -331,7 +347,8 @@ def radau_march(
             ops = operators(A_of, np.concatenate([V + C * h, V + 0.5 * C * h, V + 0.5 * h + 0.5 * C[:2] * h]))
             st: list = []
             rel = _sweep_rel(y, unit, tol * math.log1p(h / V) / log_span)  # (the local target, relax = 1)
-            full = radau_step(A_of, V, h, y, ops[:3], (ops[5], factor(ops[5], h)), rel=(rel,), stages=st)
+            g = None if prev is None or h > EXTRAPOLATE_MAX * prev[0] else _mix(_extrapolation(h / prev[0]), prev[1])
+            full = radau_step(A_of, V, h, y, ops[:3], (ops[5], factor(ops[5], h)), g, (rel,), stages=st)
             frozen = (ops[5], factor(ops[5], 0.5 * h))  # (the half steps share the operator at V + h/2, its LUs)
             # first guesses of the half steps' stages: the full step's collocation polynomial (its error is the
             # local error, so a sweep or two reach round-off); the propagated error needs 1e-4 of itself only
@@ -361,6 +378,7 @@ def radau_march(
         target = max(allowed, noise_level)
         if worst <= target:
             last_reject = math.inf
+            prev = (h, st[0])  # (the full step's stages: the next full step's first guess)
             y, e, V = two[:, 0], two[:, 1] + d, (V_b if last else V + h)
             local_sum += err_l
             steps += 1
@@ -381,16 +399,30 @@ def radau_march(
     return y, norm(e), {"steps": steps, "rejected": rejected, "solves": 3 * (steps + rejected)}
 
 
-def _replay_step(A_of, V, h, y, depth=0, rel=None):
+def _guess(prev, h):
+    """The first stage guesses of a step of h from the last step's (h, stages) in ``prev`` (a list, [] at first)."""
+    if not prev or h > EXTRAPOLATE_MAX * prev[-1][0]:
+        return None
+    return _mix(_extrapolation(h / prev[-1][0]), prev[-1][1])
+
+
+def _replay_step(A_of, V, h, y, depth=0, rel=None, prev=None):
     """A replayed step (two half steps sharing the operator at V + h/2 and its LUs); where their stage sweeps do not
     converge (a partner's grid, stiffer than the main run's), each half with its own operator, then in halves again
     (at most 3 times) -- the replay's steps are fixed, so it cannot shorten them otherwise."""
     ops = operators(A_of, np.concatenate([V + 0.5 * C * h, V + 0.5 * h + 0.5 * C * h]))
     try:
         frozen = (ops[2], factor(ops[2], 0.5 * h))
-        y1 = radau_step(A_of, V, 0.5 * h, y, ops[:3], frozen, rel=rel)
-        return radau_step(A_of, V + 0.5 * h, 0.5 * h, y1, ops[3:], frozen, rel=rel)
+        if prev is None:
+            prev = []
+        st: list = []
+        y1 = radau_step(A_of, V, 0.5 * h, y, ops[:3], frozen, _guess(prev, 0.5 * h), rel, st)
+        y2 = radau_step(A_of, V + 0.5 * h, 0.5 * h, y1, ops[3:], frozen, _guess([(0.5 * h, st[0])], 0.5 * h), rel, st)
+        prev[:] = [(0.5 * h, st[1])]
+        return y2
     except _NoConvergence:
+        if prev:
+            prev.clear()
         try:
             y1 = radau_step(A_of, V, 0.5 * h, y, ops[:3], rel=rel)
             return radau_step(A_of, V + 0.5 * h, 0.5 * h, y1, ops[3:], rel=rel)
