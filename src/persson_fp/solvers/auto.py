@@ -90,9 +90,16 @@ class _Plan:
         """When ``"chebyshev"`` is tried first: "always", "wall" (no fudge factor, tol < _CHEB_WALL_TOL) or None."""
 
     def solve(self, problem, zeta_out, tol, budget, max_time):
-        """``"chebyshev"`` first where the plan says so, then fv on the front-fixed engine to tol."""
+        """``"chebyshev"`` first where the plan says so, then fv on the front-fixed engine to tol.
+
+        On a moving wall at ``_CHEB_WALL_TOL <= tol <= 1e-4`` fv goes first under the work cap ``_FV_WALL_WORK``;
+        where its next attempt would exceed it, chebyshev is tried (capped at ``_CHEB_WALL_TIME`` and at what is
+        left of ``max_time``), and where that declines fv resumes at the resolution the cap stopped it at -- its
+        attempts before the cap in ``info["auto"]["fv_attempts"]``, the decline in ``info["auto"]["why"]``."""
+        t_call = time.perf_counter()
         declined, cheb_err = "", ""
-        resume = {}  # (fv's options where a work-capped fv attempt stopped for chebyshev)
+        resume, tried = {}, []  # (fv's options where a work-capped fv attempt stopped for chebyshev, and its attempts)
+        cheb_spent = fv_spent = 0.0
         if self.chebyshev == "wall" and problem.fudge.name == "none" and _CHEB_WALL_TOL <= tol <= 1e-4:
             why = (
                 f"no closed form ({self.what}): finite volumes on the front-fixed engine, n cells and n steps from "
@@ -102,10 +109,14 @@ class _Plan:
                 return solve_to_tol(problem, "fv", zeta_out, tol, why=why, max_work=_FV_WALL_WORK, **budget)
             except _TooMuchWork as stop:
                 resume, tried = stop.options, stop.attempts
-            capped = dict(budget)
-            capped["max_time"] = min(_CHEB_WALL_TIME, budget["max_time"] or math.inf)
             t_cheb = time.perf_counter()
+            fv_spent = t_cheb - t_call
+            capped = dict(budget)
+            left = math.inf if max_time is None else max_time - fv_spent  # (fv's capped attempts count)
+            capped["max_time"] = min(_CHEB_WALL_TIME, left)
             try:
+                if left <= 0.0:
+                    raise SolverError(f"no time left of max_time = {max_time:g} s")
                 sol = _solve_chebyshev(problem, zeta_out, tol, capped)
                 sol.info["auto"]["why"] += (
                     f"; fv first ({len(tried)} attempt(s)) would next need n_p x n_steps = "
@@ -115,8 +126,9 @@ class _Plan:
                 return sol
             except (ValueError, SolverError) as err:
                 declined, cheb_err = f"; method 'chebyshev' declined: {err}", str(err)
+                cheb_spent = time.perf_counter() - t_cheb
                 if max_time is not None:
-                    budget["max_time"] = max_time - (time.perf_counter() - t_cheb)
+                    budget["max_time"] = max_time - (time.perf_counter() - t_call)
         cheb_budget = None if resume else self.chebyshev_budget(problem, tol, budget)  # the spectral engine first
         if cheb_budget is not None:
             t_cheb = time.perf_counter()
@@ -124,6 +136,7 @@ class _Plan:
                 return _solve_chebyshev(problem, zeta_out, tol, cheb_budget)
             except (ValueError, SolverError) as err:
                 declined, cheb_err = f"; method 'chebyshev' declined: {err}", str(err)
+                cheb_spent = time.perf_counter() - t_cheb
                 if max_time is not None and cheb_budget is not budget:  # fv gets what the capped attempt left
                     budget["max_time"] = max_time - (time.perf_counter() - t_cheb)
                 elif max_time is None and "over its budget" in cheb_err:  # (the march's forecast: fv, slower at
@@ -134,9 +147,21 @@ class _Plan:
             f"no closed form ({self.what}): finite volumes on the front-fixed engine, n cells and n steps from the "
             f"measured error model C/n^2, checked by a half-resolution partner run{declined}"
         )
+        if resume:
+            why += (
+                f"; fv resumed at n_p x n_steps = {_work(resume):.3g}, where the work cap had stopped it after "
+                f"{len(tried)} attempt(s)"
+            )
+
+        def fv():
+            sol = solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget, **resume)
+            if resume:
+                sol.info["auto"]["fv_attempts"] = tried
+            return sol
+
         if max_time is None and budget["max_time"] is not None:  # (chebyshev's forecast declined: fv as long)
             try:
-                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget, **resume)
+                return fv()
             except (ValueError, SolverError) as err:
                 if "max_time" not in str(err):
                     raise
@@ -146,20 +171,20 @@ class _Plan:
                     "larger max_time (seconds)"
                 ) from None
         if max_time is not None and budget["max_time"] != max_time:
-            spent = max_time - budget["max_time"]
+            first = f" after fv's {len(tried)} work-capped attempt(s) took {fv_spent:.3g} s" if resume else ""
             try:
                 if budget["max_time"] <= 0.0:
                     raise SolverError("no time left")
-                return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget, **resume)
+                return fv()
             except (ValueError, SolverError) as err:
                 if "max_time" not in str(err) and str(err) != "no time left":
                     raise
                 raise SolverError(
                     f"auto: tol = {tol:g} not met within max_time = {max_time:g} s: the chebyshev attempt took "
-                    f"{spent:.3g} s and was declined ({cheb_err[:200]}), and fv then ran out of the rest "
+                    f"{cheb_spent:.3g} s{first} and was declined ({cheb_err[:200]}), and fv then ran out of the rest "
                     f"({err}); ask for a looser tol or a larger max_time"
                 ) from None
-        return solve_to_tol(problem, "fv", zeta_out, tol, why=why, **budget, **resume)
+        return fv()
 
     def errors(self, sol):
         """(worst L1, worst area error, kind) of a Solution: the solver's own estimate."""

@@ -40,7 +40,11 @@ started at 4 V0 divided by 4, the march's own estimate, the start's
 quadrature error on the grid, a round-off floor (that of the general path, ``collocation.roundoff_floor``, not
 below 4 eps n^2) and the residual of the area balance A_el + A_pl + A_non
 = 1 (exact in the continuum; the collocated wall fluxes meet it to the discretisation error).  With ``tol`` the
-degree is raised, V0 lowered or the march tightened, whichever part dominates, until the estimate meets it.
+degree is raised, V0 lowered or the march tightened, whichever part dominates, until the estimate meets it.  The
+round-off floor is computed from the operators alone (``_floor_at``, milliseconds) and grows along every step of that
+loop, so a tol below it is refused before any march, and again before a pass whose floor would exceed tol: a
+:class:`~persson_fp.SolverError` naming tol, the floor, the degree and a tol within reach (tol = 1e-10 and 1e-12 on
+the moving-wall scene W in ~0.01 s; they took ~5 s, one or two passes of three marches, before).
 """
 
 from __future__ import annotations
@@ -224,10 +228,7 @@ def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None,
     floor = 4.0 * np.finfo(float).eps * n * n
     for k, V in enumerate(V_out):
         V = float(V)
-        V0 = frac * V
-        s0 = wall(V0)[0]
-        width = math.sqrt(V0)
-        grid = collocation.chebyshev_grid(n, 1.0, pb / s0, np.full(nl, 3.0 * width / s0))
+        V0, s0, grid = _station_grid(pr, wall, n, frac, V)
         wall_p = np.full(nl, s0)
         w0 = s0 * collocation.start_density(lambda q: (np.ones(np.shape(q)), None), s0 * grid.p, pb, V0, p_wall=wall_p)
         w0[:, 0] = w0[:, -1] = 0.0
@@ -237,12 +238,7 @@ def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None,
         m = n - 1
         wts = grid.w[:, 1:-1]
 
-        ops = _Operators(grid)
-
-        def A_of(Vq, ops=ops):
-            return ops.at(np.array([wall(Vq)]))[0]
-
-        A_of.many = lambda Vs, ops=ops: ops.at(wall.many(Vs))
+        A_of = _operator_of(grid, wall)
 
         s_end, sV_end, _ = wall(V)
         lift = 1.0 + s_end * sV_end  # |A_pl| and the lift beta A_pl x (its L1: beta |A_pl| / 2) at the station
@@ -276,12 +272,86 @@ def _run(pr, V_out, wall, n: int, frac: float, tol_t: float, budget, nodes=None,
         out["A_pl"][k] = y[:, m]
         out["A_non"][k] = q["noncontact_area"] + y[:, m + 1]
         out["t_err"][k] = t_err
-        # the dense exponentials' backward error, as on the general Magnus path (collocation.roundoff_floor)
-        out["roundoff"][k] = collocation.roundoff_floor(np.maximum(np.abs(A_of(V0)), np.abs(A_of(V))), V - V0, n)
+        out["roundoff"][k] = _roundoff(A_of, V0, V, n)
         out["grids"].append(grid)
         out["nodes"].append(used if nodes is None else nodes[k])
     out["stats"] = stats
     return out
+
+
+def _station_grid(pr, wall, n: int, frac: float, V: float):
+    """(V0, s0 = sigma_Y at V0, the grid in x) of the station at V started at V0 = frac V: the Chebyshev points
+    sinh-mapped around p_bar / s0, clustered within 3 start widths sqrt(V0) / s0."""
+    V0 = frac * V
+    s0 = wall(V0)[0]
+    nl = pr.p_bar.size
+    grid = collocation.chebyshev_grid(n, 1.0, pr.p_bar.astype(float) / s0, np.full(nl, 3.0 * math.sqrt(V0) / s0))
+    return V0, s0, grid
+
+
+def _operator_of(grid, wall):
+    """``A_of(V)``: the operator of :func:`_operator` on ``grid`` at V, with ``A_of.many(Vs)`` stacking it over
+    many V in one pass (:func:`~persson_fp.solvers.chebyshev.radau.operators`)."""
+    ops = _Operators(grid)
+
+    def A_of(Vq):
+        return ops.at(np.array([wall(Vq)]))[0]
+
+    A_of.many = lambda Vs: ops.at(wall.many(Vs))
+    return A_of
+
+
+def _roundoff(A_of, V0: float, V: float, n: int):
+    """The round-off floor of a station (per load): :func:`collocation.roundoff_floor` of the larger of the operators
+    at its ends, |A(V0)| and |A(V)| entrywise, over the span V - V0 -- the backward error of the stiff operator's
+    solves and exponentials, as on the general paths of :mod:`persson_fp.solvers.chebyshev`."""
+    return collocation.roundoff_floor(np.maximum(np.abs(A_of(V0)), np.abs(A_of(V))), V - V0, n)
+
+
+def _floor_at(pr, V_out, wall, n: int, frac: float) -> float:
+    """The largest round-off floor a pass at degree n and start fraction ``frac`` would report (max(4 eps n^2,
+    :func:`_roundoff`) over stations and loads, the ``"roundoff"`` part of its estimate, which every part of it
+    includes) -- from the operators alone, before any march (milliseconds: the grids and two operators a station).
+    It grows along the refinement loop's steps -- the degree 1.3x, or the start fraction 4x lower with the degree
+    1.15x -- (~n^6: ||A|| ~ n^4 on the clustered grid, times (n / 400)^2; a narrower start alone can lower it a
+    little, the walls' nodes spreading; measured at least 1.32x a step over the moving-wall scenes, n = 24-140,
+    fractions 1e-2 to 1e-6), so once a pass's floor exceeds tol no later pass meets it."""
+    worst = 4.0 * np.finfo(float).eps * n * n
+    for V in V_out:
+        V0, _, grid = _station_grid(pr, wall, n, frac, float(V))
+        worst = max(worst, float(np.max(_roundoff(_operator_of(grid, wall), V0, float(V), n))))
+    return worst
+
+
+def _start_of(pr, V_out, tol: float, opts) -> tuple:
+    """(first degree, start fraction) of the refinement loop for ``tol`` (``opts``: chebyshev's options)."""
+    frac = opts["V0_fraction"] or min(float(np.clip(0.3 * math.sqrt(tol), 3e-5, 1e-2)), _wall_fraction(pr, V_out, tol))
+    return opts["n_p"] or int(np.clip(8 + 8 * math.log10(1.0 / tol), 24, N_MAX_WALL)), frac
+
+
+def _reachable(pr, V_out, wall, tol: float, opts) -> float:
+    """The smallest tol above ``tol`` (in half-decade steps) whose round-off floor at the degree the loop usually
+    ends at -- 1.3x its first degree (measured on the moving-wall scenes: 72 -> 94 at tol 1e-8, 80 -> 104 at 1e-9)
+    -- stays below half of it (the other half for the discretisation and the march); 0.1 at most."""
+    reach = tol
+    while reach < 0.1:
+        reach = min(reach * math.sqrt(10.0), 0.1)
+        n1, frac1 = _start_of(pr, V_out, reach, opts)
+        if _floor_at(pr, V_out, wall, min(int(math.ceil(1.3 * n1)), N_MAX_WALL), frac1) <= 0.5 * reach:
+            break
+    return reach
+
+
+def _unreachable(pr, V_out, wall, tol: float, n: int, floor: float, opts, done: str = "") -> None:
+    """Raise the :class:`~persson_fp.SolverError` of a tol below the round-off floor of the next pass (``floor``
+    at degree ``n``; ``done``: what the passes so far reached), naming the floor and a tol within reach."""
+    reach = _reachable(pr, V_out, wall, tol, opts)
+    raise SolverError(
+        f"chebyshev (moving wall): tol = {tol:.3g} is below the round-off floor of the stiff collocated operator: "
+        f"{floor:.2e} at degree {n} (it grows ~n^6 with the degree, and a coarser degree leaves a larger "
+        f"discretisation error){done}; the best reachable accuracy is about {reach:.1e} -- loosen tol to it or use "
+        "method='fv'"
+    )
 
 
 def _march(march, A_of, y0, V0, V, breaks, tol_t, norm, floor, budget, nodes, record, runs):
@@ -414,8 +484,9 @@ def solve_moving_wall(
     o, pr = opts, problem
     tol = o["tol"]
     wall = _Wall(pr)
-    frac = o["V0_fraction"] or min(float(np.clip(0.3 * math.sqrt(tol), 3e-5, 1e-2)), _wall_fraction(pr, V_out, tol))
-    n = o["n_p"] or int(np.clip(8 + 8 * math.log10(1.0 / tol), 24, N_MAX_WALL))
+    n, frac = _start_of(pr, V_out, tol, o)
+    if o["n_p"] is None and (f0 := _floor_at(pr, V_out, wall, n, frac)) > tol:  # refused before any march
+        _unreachable(pr, V_out, wall, tol, n, f0, o)
     tol_t = tol / 4.0
     budget = (time.perf_counter() + max_time, max_time, budget_name, tol)  # (deadline, max_time, whose, tol)
     march = o["march"] or "radau"
@@ -459,10 +530,11 @@ def solve_moving_wall(
         refined = False
         was = (n, tol_t, frac)
         if time_worst > share and time_worst > 0.5 * last_time:  # a tighter march did not lower it: round-off
+            reach = max(3.0 * time_worst, _reachable(pr, V_out, wall, tol, o))
             raise SolverError(
                 f"chebyshev (moving wall): the march's error estimate stays at {time_worst:.2e} (tol = {tol:.3g}) "
                 f"however small its steps (the round-off of the stiff operator at degree {n}); loosen tol (about "
-                f"{3.0 * time_worst:.1e} is within reach) or use method='fv'"
+                f"{reach:.1e} is within reach) or use method='fv'"
             )
         last_time = time_worst if time_worst > share else math.inf
         if time_worst > share and tol_t > 1e-3 * tol:
@@ -486,6 +558,8 @@ def solve_moving_wall(
                 f"chebyshev (moving wall): the error estimate {worst:.3e} exceeds tol = {tol:.3g} at degree "
                 f"{N_MAX_WALL} (worst at zeta = {z_k:.6g}); {hint}"
             )
+        if (f_next := _floor_at(pr, V_out, wall, n, frac)) > tol:  # the next pass cannot meet tol: refuse now
+            _unreachable(pr, V_out, wall, tol, n, f_next, o, f"; after {runs} runs the error estimate is {worst:.2e}")
         where = (z_k, None if width >= 1e-2 else hint)
         _forecast_pass(time.perf_counter() - t_pass, was, (n, tol_t, frac), budget, worst, tol, runs, where)
         if time.perf_counter() > budget[0]:
