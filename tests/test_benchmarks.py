@@ -290,3 +290,17 @@ def test_moving_wall_auto_quick(tmp_path):
         assert r["best_fv_n_p"] != "" and r["best_fv_true_error"] <= r["target"]
         assert r["ratio"] > 0 and r["best_fv_n_p"] in (25, 50, 100, 200, 400, 800)
     assert "| 0.0001 |" in (tmp_path / "moving_wall_auto.md").read_text()
+
+
+@pytest.mark.slow  # (two marches at zeta = 8, a few seconds)
+def test_wall_marches_quick(tmp_path):
+    """The moving wall's Radau and Magnus marches (quick: zeta = 8, tol 1e-4): each meets tol by its own estimate,
+    and their areas -- two different time integrators on the same collocation -- agree within 2 tol."""
+    rows = _module("wall_marches").main(["--quick", "--output", str(tmp_path)])
+    assert {r["march"] for r in rows} == {"radau", "magnus"} and len(_rows(tmp_path / "wall_marches.csv")) == 2
+    for r in rows:
+        assert 0.0 < r["estimate"] <= r["tol"] and r["median_s"] > 0.0
+        assert abs(r["A_el_radau_minus_magnus"]) <= 2.0 * r["tol"]
+        assert abs(r["A_pl_radau_minus_magnus"]) <= 2.0 * r["tol"]
+        assert 0.0 < r["A_el"] < 1.0 and 0.0 < r["A_pl"] < 1.0
+    assert "| 0.0001 |" in (tmp_path / "wall_marches.md").read_text()
