@@ -103,11 +103,19 @@ MEMORY_BUDGET = 4 * 2**30
 
 MEMORY_MODELS = {
     # (options, n_loads, n_stations, with_fudge) -> bytes, fitted to tracemalloc peaks (reference problem)
-    # fv: 85 MB at n_p = 2e4, 100 steps; 1.67 GB at 2000 steps (the trajectory of one load is kept); on a moving
-    # wall or general coefficients (the front-fixed engine, no trajectory): 0.40 / 0.69 / 1.48 MB at n_p = n_steps
-    # = 400 / 800 / 1600, 3.06 MB at (800, 3200), 2.05 MB at (3200, 800) -- the model 1.1-1.8x those
+    # fv: 85 MB at n_p = 2e4, 100 steps; 1.67 GB at 2000 steps (the trajectory of one load is kept); 83 / 134 MB
+    # at (n_p, n_steps) = (2000, 1000) / (8000, 400), 1 and 10 loads -- the model 1.2-1.5x those.  The front-fixed
+    # engine (a moving wall or general coefficients, no trajectory; whole pf.solve calls, benchmarks/
+    # memory_estimates.py): cells ~600 B a load, steps ~950 B whatever the loads, and on general coefficients a
+    # ~1 MB set-up (sizing the domain from B1, B2).  Moving wall: 0.42 / 1.61 / 6.36 MB at n_p = n_steps = 400 /
+    # 1600 / 6400, 3.10 / 2.05 / 4.08 / 8.13 MB at (400, 3200) / (3200, 400) / (6400, 800) / (12800, 400); 10 loads
+    # 2.31 / 1.58 / 9.12 MB at (400, 400) / (200, 1600) / (1600, 200).  General: 1.15 MB at (200, 100), 1.16 / 2.49 /
+    # 10.8 MB and 3.75 / 2.64 / 5.23 / 9.48 MB at the same; 10 loads 2.31 / 1.96 MB at (400, 400) / (200, 1600).
+    # The model 1.1-1.9x those (a sum of the parts: the cells' and the steps' peaks need not coincide)
     "fv": lambda o, nl, nz, f: (
-        (500.0 * o["n_p"] + 900.0 * o["n_steps"]) * nl + 1e5
+        (300.0 + 500.0 * nl) * o["n_p"] + 1000.0 * o["n_steps"] + 1e6
+        if o.get("front_fixed") and o.get("general")
+        else (60.0 + 650.0 * nl) * o["n_p"] + 1000.0 * o["n_steps"] + 5e4
         if o.get("front_fixed")
         else 48.0 * o["n_p"] * (o["n_steps"] + 10) + 160.0 * o["n_p"] * nl
     ),
@@ -307,17 +315,10 @@ class Solver:
 
         ``n_p``: the grid size where the method fixes it only later (mol's automatic grid).
         """
-        model = MEMORY_MODELS.get(self.name)
-        if model is None:  # (a method without a memory model: nothing to estimate)
+        args = self._model_args(n_p)
+        if args is None:  # (a method without a memory model, or a grid not fixed yet: nothing to estimate)
             return
-        o = dict(self.opts)
-        if n_p is not None:
-            o["n_p"] = n_p
-        if o.get("n_p", 0) is None:
-            return
-        o.update(self.memory_options())
-        args = (o, self.problem.n_loads, self.zeta_out.size, self.problem.fudge.name != "none")
-        need = float(model(*args))
+        need = float(MEMORY_MODELS[self.name](*args))
         secs = float(TIME_MODELS[self.name](*args)) if self.name in TIME_MODELS else 0.0
         if secs > self.max_time:
             raise ValueError(
@@ -331,6 +332,25 @@ class Solver:
                 f"max_memory = {self.max_memory / 2**30:.3g} GiB; use a coarser grid (n_p, n_steps), fewer loads or "
                 "walkers (n_walkers), or pass a larger max_memory (bytes) if the machine has it"
             )
+
+    def _model_args(self, n_p=None):
+        """The arguments (options, n_loads, n_stations, with_fudge) of this method's :data:`MEMORY_MODELS` entry, or
+        None where it has none or the grid is not fixed yet (``n_p``: as in :meth:`check_memory`)."""
+        if self.name not in MEMORY_MODELS:
+            return None
+        o = dict(self.opts)
+        if n_p is not None:
+            o["n_p"] = n_p
+        if o.get("n_p", 0) is None:
+            return None
+        o.update(self.memory_options())
+        return o, self.problem.n_loads, self.zeta_out.size, self.problem.fudge.name != "none"
+
+    def memory_estimate(self, n_p=None) -> float | None:
+        """The estimated peak memory (bytes) that :meth:`check_memory` holds against ``max_memory``; None where
+        the method has no model or its grid is not fixed yet."""
+        args = self._model_args(n_p)
+        return None if args is None else float(MEMORY_MODELS[self.name](*args))
 
     # -- shared machinery ------------------------------------------------------------------------
     @functools.cached_property

@@ -431,7 +431,7 @@ class ChebyshevSolver(Solver):
 
     def check_degree_memory(self, n: int) -> None:
         """A ``ValueError`` if a run at degree ``n`` would exceed ``max_memory`` (``budget.check_degree_memory``)."""
-        check_degree_memory(n, self.problem.n_loads, self.max_memory)
+        check_degree_memory(n, self.problem.n_loads, self.max_memory, self.path)
 
     def _out_of_time(self, where: str):
         out_of_time(getattr(self, "_budget", self.max_time), where)

@@ -494,7 +494,7 @@ def solve_moving_wall(
     runs = 0
     last_time = math.inf  # the march's part of the last estimate where it was tightened after it
     while True:
-        check_degree_memory(n, pr.n_loads, max_memory)
+        check_degree_memory(n, pr.n_loads, max_memory, "moving-wall")
         t_pass = time.perf_counter()
         main = _run(pr, V_out, wall, n, frac, tol_t, budget, march=march)
         grid_part = _run(pr, V_out, wall, max(8, int(round(0.75 * n))), frac, tol_t, budget, main["nodes"], march)

@@ -22,7 +22,12 @@ import numpy as np
 from persson_fp.solvers.front_fixed import fluxes
 from persson_fp.solvers.front_fixed.domain import coefficient_domain
 
-__all__ = ["Homogenised", "General", "model_of", "START_CLEARANCE", "PECLET_MAX", "N_P_LIMIT"]
+__all__ = ["Homogenised", "General", "model_of", "START_CLEARANCE", "PECLET_MAX", "N_P_LIMIT", "COEF_CACHE"]
+
+COEF_CACHE = 8
+"""General coefficients: how many variances V keep their sampled coefficients (the most recent; a step of the
+march asks for a few V, the next step starts at the last one).  Unbounded, the cache held every stage time of the
+march: ~40 n_p bytes a stage, 18 MB at n_p = n_steps = 400 (tracemalloc) and O(n_p n_steps) beyond."""
 
 START_CLEARANCE = 6.0
 """General coefficients: a start-up Gaussian whose drift moved it by more than its width must lie at least this many
@@ -124,6 +129,9 @@ class General(Homogenised):
         B1f, B2f = pr.coefficients(s * mw.x_faces, z)
         B1c, B2c = pr.coefficients(s * mw.x, z)
         b1f, b2f, b2c = B1f / dVdz, B2f / dVdz, B2c / dVdz
+        for cache in (mw._coef_cache, mw._drift_cache):  # (the oldest out: memory independent of n_steps)
+            while len(cache) >= COEF_CACHE:
+                del cache[next(iter(cache))]
         mw._drift_cache[V] = B1c / dVdz
         v = (sV / s) * mw.x_faces - b1f / s
         if sV > 0 and not b2f[-1] > 0:

@@ -213,8 +213,9 @@ class FiniteVolumeSolver(Solver):
         self._engine = "front-fixed" if pr.moving_wall or pr.general else "march"
 
     def memory_options(self) -> dict:
-        """The engine's memory model (no trajectory kept on the front-fixed engine; :data:`MEMORY_MODELS`)."""
-        return {"front_fixed": self._engine == "front-fixed"}
+        """The engine's memory model (no trajectory kept on the front-fixed engine, general coefficients sampled on
+        its grid; :data:`MEMORY_MODELS`)."""
+        return {"front_fixed": self._engine == "front-fixed", "general": bool(self.problem.general)}
 
     # -- set-up --------------------------------------------------------------------------------
     def _start(self):
