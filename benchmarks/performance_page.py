@@ -617,6 +617,59 @@ def imports():
     ]
 
 
+def wall_marches():
+    rows = _rows("wall_marches.csv")
+    if not rows:
+        return []
+    table = []
+    for tol in sorted({r["tol"] for r in rows}, key=float, reverse=True):
+        rr = {r["march"]: r for r in rows if r["tol"] == tol}
+        table.append(
+            [
+                _sig(float(tol), 1),
+                _time(rr["radau"]["median_s"]),
+                _time(rr["magnus"]["median_s"]),
+                f"{_sig(float(rr['magnus']['median_s']) / float(rr['radau']['median_s']), 2)}×",
+            ]
+        )
+    return [
+        "",
+        '`chebyshev` on the moving wall marches by Radau IIA steps; `march="magnus"` keeps the older exponential',
+        "steps (whole calls in turn, the station at ζ_max):",
+        "",
+        "Regenerate: `python benchmarks/wall_marches.py`.",
+        "",
+        _table(["tol", "Radau (default)", "Magnus", "Magnus / Radau"], table),
+    ]
+
+
+def memory():
+    rows = _rows("memory_estimates.csv")
+    if not rows:
+        return []
+    table = []
+    for group in dict.fromkeys(r["group"] for r in rows):
+        sel = [r for r in rows if r["group"] == group]
+        ratio = [float(r["ratio"]) for r in sel]
+        peak = [float(r["peak_MB"]) for r in sel]
+        table.append(
+            [group, str(len(sel)), f"{_sig(min(peak), 2)}–{_sig(max(peak), 2)}", f"{min(ratio):.2f}–{max(ratio):.2f}"]
+        )
+    return [
+        "",
+        "## Does a run fit in memory?",
+        "",
+        "A solver refuses a run whose estimated peak exceeds `max_memory` (a `ValueError` naming it) before it",
+        "starts. The estimate against the peak tracemalloc measures over the whole call (numpy's arrays; LAPACK's own",
+        "workspace is not seen); an estimate below 1× would let a run exhaust memory, one far above 1× refuses runs",
+        "that fit:",
+        "",
+        "Regenerate: `python benchmarks/memory_estimates.py`.",
+        "",
+        _table(["solver and path", "cases", "peak [MB]", "estimate / peak"], table),
+    ]
+
+
 def build() -> str:
     lines = [
         "# Performance and accuracy",
@@ -638,6 +691,7 @@ def build() -> str:
         general,
         moving_wall,
         moving_wall_auto,
+        wall_marches,
         honesty,
         theory_vs_bem,
         interface_speed,
@@ -645,6 +699,7 @@ def build() -> str:
         sweeps,
         stability,
         convergence,
+        memory,
         imports,
     ):
         lines += part()

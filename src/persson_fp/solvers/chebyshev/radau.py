@@ -32,7 +32,7 @@ import time
 
 import numpy as np
 
-__all__ = ["radau_march", "radau_step", "MAX_STEPS", "MarchTooLong", "EST_ORDER"]
+__all__ = ["radau_march", "radau_step", "one_sided", "MAX_STEPS", "MarchTooLong", "EST_ORDER", "FORECAST_AFTER_BREAK"]
 
 MAX_STEPS = 4000
 """Accepted plus rejected steps a march may take (a :class:`MarchTooLong`; the forecast refuses it earlier)."""
@@ -48,6 +48,11 @@ p-dependent diffusion that changes with zeta (B2 = 4 kappa V' (p + a(zeta))) the
 above the estimate with / 15 (order 4), while its steps still follow the order-5 controller."""
 RELAX = 100.0
 """The largest relaxation of the local step target by the damping measured so far (sum of |local| / |global|)."""
+FORECAST_AFTER_BREAK = 1.05
+"""A march piece forecasts its cost once it is a tenth of its span in ln V on, and one that starts at a break of the
+operator (the roll-off's kink) not before this times its start: the first steps are graded (from the narrow start;
+from the break, where the wall value's derivative jumps and a boundary layer forms at the wall), and their pace in
+ln V over-forecasts (measured 2.5x after 8 steps on the moving-wall scene W; thousands of steps from a break)."""
 ORDER_TOL = 4.0
 """The exponent of ``reachable = tol (forecast / budget)^ORDER_TOL``, the tol a refused march names: the steps
 of a march held to tol per unit ln V grow as tol^(-1/q), q ~ 3-4 (measured 1e-4 -> 1e-8: ~3x the steps)."""
@@ -431,6 +436,18 @@ def _replay_step(A_of, V, h, y, depth=0, rel=None, prev=None):
                 raise
             y = _replay_step(A_of, V, 0.5 * h, y, depth + 1, rel)
             return _replay_step(A_of, V + 0.5 * h, 0.5 * h, y, depth + 1, rel)
+
+
+def one_sided(A_of, lo: float, hi: float):
+    """``A_of`` on the piece [lo, hi] between breaks: points within 1e-12 of an end (a stage on it) are moved
+    inside, so that the operator there is its limit from within the piece, not the other side's."""
+    lo_in, hi_in = lo * (1.0 + 1e-12), hi * (1.0 - 1e-12)
+
+    def piece(V):
+        return A_of(min(max(V, lo_in), hi_in))
+
+    piece.many = lambda Vs: A_of.many(np.clip(Vs, lo_in, hi_in))
+    return piece
 
 
 def _forecast(V, V_a, V_b, h, steps, rejected, pace, tol, time_budget):

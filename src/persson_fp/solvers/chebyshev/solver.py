@@ -17,7 +17,8 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   adaptive Radau IIA steps in V (order 5, L-stable; one real and one complex LU of the small dense operator a step,
   no matrix exponential), step doubling for the local error, whose signed estimates are propagated through the
   march for its estimate of the global error (:mod:`persson_fp.solvers.chebyshev.radau`); the partner runs replay
-  its steps.  Every part of the estimate over a third of tol is refined at once, at its measured rate.  The march
+  its steps.  The march stops at the spectrum's roll-off, where dV/dzeta has a kink (a step across it is first
+  order and its step-doubling estimate blind).  Every part of the estimate over a third of tol is refined at once, at its measured rate.  The march
   forecasts its cost after a few steps and is refused at once if the solve would exceed its budget (``max_time``;
   by default ``MARCH_TIME_BUDGET`` = 10 s on this path), naming the tol that would fit and the time it would
   take.  ``march="magnus"`` takes the older fourth-order commutator-free exponential steps instead
@@ -63,7 +64,7 @@ from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.coefficients import Coefficients
 from persson_fp.solvers.chebyshev.magnus import magnus_march
-from persson_fp.solvers.chebyshev.radau import MarchTooLong, radau_march
+from persson_fp.solvers.chebyshev.radau import FORECAST_AFTER_BREAK, MarchTooLong, one_sided, radau_march
 from persson_fp.solvers.chebyshev.shared import estimate_entry, solve_shared
 from persson_fp.solvers.chebyshev.wall import check_wall_problem, solve_moving_wall
 
@@ -458,34 +459,71 @@ class ChebyshevSolver(Solver):
             n_next = int(math.ceil(1.3 * n))  # (no part over its share but the sum over tol: the largest is the grid's)
         return n_next, frac, tol_t
 
+    def _kinks(self) -> list:
+        """The V where the spectrum's dV/dzeta has a kink (its roll-off zeta_r, where the derivative of dV/dzeta
+        jumps): coefficients evaluated at zeta(V) are not smooth there, and a Radau step across it is first order
+        while its step-doubling estimate stays blind -- measured on a shifted squared-Bessel problem (B2 =
+        4 kappa V'(p + a(zeta))): a step over zeta_r = 2 left a true L1 of 3e-6 that the march never saw, 5e-7 at
+        zeta_max against an estimate of 3e-8; stopping there, 5e-9."""
+        if not hasattr(self, "_kink_V"):
+            pr = self.problem
+            zr = getattr(pr.psd, "zeta_r", None)
+            self._kink_V = [float(pr.V(zr))] if zr is not None and 1.0 < zr < float(pr.zeta_max) else []
+        return self._kink_V
+
     def _radau(self, k, A_of, y0, V0, V, tol_t, norm, floor, n):
-        """The Radau march of station k (:func:`radau.radau_march`): a partner run replays the main run's steps;
-        the main run's march is held to its share of the time left -- the stations still to go (each about as
-        long: the same span ln(1 / V0_fraction) in ln V) and the two partners' replays (2 of the 3 solves of a
-        step each) -- and refused at once if forecast over it."""
-        if self._replay is not None:
-            return radau_march(A_of, y0, V0, V, tol_t, norm, floor, deadline=self._deadline, nodes=self._replay[k])
-        record: list = []
+        """The Radau march of station k (:func:`radau.radau_march`), stopping at the spectrum's kinks
+        (:meth:`_kinks`; each piece held to its share of ``tol_t`` in ln V, a stage on a kink taking the operator of
+        its own piece's side): a partner run replays the main run's steps; the main run's march is held to its share
+        of the time left -- the stations still to go (each about as long: the same span ln(1 / V0_fraction) in ln V)
+        and the two partners' replays (2 of the 3 solves of a step each) -- and refused at once if forecast over
+        it."""
+        points = [V0, *[b for b in self._kinks() if V0 * (1.0 + 1e-9) < b < V * (1.0 - 1e-9)], V]
+        replaying = self._replay is not None
+        nodes, record = (self._replay[k], None) if replaying else (None, [])
         runs = (self.V_out.size - k) * (1.0 + 4.0 / 3.0)  # (this march's cost is shared by ~this many)
-        share = (self._deadline - time.perf_counter()) / runs
-        try:
-            out = radau_march(
-                A_of, y0, V0, V, tol_t, norm, floor, deadline=self._deadline, record=record, time_budget=share
+        log_span = math.log(V / V0)
+        y, est, stats = y0, 0.0, {}
+        for a, b in zip(points[:-1], points[1:]):
+            piece = (
+                A_of if len(points) == 2 else one_sided(A_of, a if a != V0 else -math.inf, b if b != V else math.inf)
             )
-        except MarchTooLong as err:
-            if not math.isfinite(err.needed):
-                raise
-            given = (
-                "max_time" if self._budget == self.max_time else f"the default budget of this path, {self._budget:g} s"
-            )
-            raise MarchTooLong(
-                f"{err}: the solve at tol = {self.opts['tol']:.3g} would take about {err.needed * runs:.3g} s more, "
-                f"over its budget ({given}: {self._budget:.3g} s in all)",
-                err.reachable,
-                err.needed,
-            ) from None
-        self._nodes[k] = record
-        return out
+            tol_piece = tol_t * math.log(b / a) / log_span
+            h0 = None if a == V0 else 1e-5 * a  # (from a kink: graded steps, as from the narrow start)
+            if replaying:
+                replay = [v for v in nodes if a * (1.0 + 1e-12) < v <= b * (1.0 + 1e-12)]
+                y, e, st = radau_march(piece, y, a, b, tol_piece, norm, floor, h0, self._deadline, nodes=replay)
+            else:
+                if record and record[-1] == a:  # (the march records its start again)
+                    record.pop()
+                share = (self._deadline - time.perf_counter()) / runs * math.log(b / a) / math.log(V / a)
+                forecast_from = 0.0 if a == V0 else a * max(FORECAST_AFTER_BREAK, (b / a) ** 0.1)
+                try:
+                    y, e, st = radau_march(
+                        piece, y, a, b, tol_piece, norm, floor, h0, self._deadline, record=record, time_budget=share,
+                        forecast_from=forecast_from,
+                    )  # fmt: skip
+                except MarchTooLong as err:
+                    reach = err.reachable * tol_t / tol_piece  # (in the units of the whole march's tol)
+                    if not math.isfinite(err.needed):
+                        raise MarchTooLong(str(err), reach, err.needed) from None
+                    given = (
+                        "max_time"
+                        if self._budget == self.max_time
+                        else f"the default budget of this path, {self._budget:g} s"
+                    )
+                    raise MarchTooLong(
+                        f"{err}: the solve at tol = {self.opts['tol']:.3g} would take about {err.needed * runs:.3g} s "
+                        f"more, over its budget ({given}: {self._budget:.3g} s in all)",
+                        reach,
+                        err.needed,
+                    ) from None
+            est = est + e
+            for key, val in st.items():
+                stats[key] = stats.get(key, 0) + val
+        if record is not None:
+            self._nodes[k] = record
+        return y, est, stats
 
     def _solve(self) -> SolverOutput:
         o, pr = self.opts, self.problem

@@ -27,7 +27,8 @@ march forecasts its cost a tenth of the way through each piece and is refused at
 the time left (``max_time``; by default the chebyshev march budget, ``MARCH_TIME_BUDGET`` = 10 s), naming the tol
 that would fit; so is a refinement forecast over the time left.  ``march="magnus"`` takes the older commutator-free
 fourth-order exponential steps (:mod:`persson_fp.solvers.chebyshev.magnus`, 8 dense exponentials a step, order 2
-where beta changes fast; 26 s for tol = 1e-6 on the moving-wall scene W where Radau takes 0.8 s).  A constant
+where beta changes fast; on the moving-wall scene W 11 s for tol = 1e-6 where Radau takes 0.9 s, though faster at
+1e-4: ``benchmarks/results/wall_marches.md``).  A constant
 hardness gives beta = 0: the absorbing strip.
 
 *Start.*  Every station starts afresh at V0 = V0_fraction x V from the heat kernel in p with its images across p = 0
@@ -59,7 +60,7 @@ from persson_fp.solvers.base import SolverOutput, zeta_of
 from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.magnus import magnus_march
-from persson_fp.solvers.chebyshev.radau import MarchTooLong, radau_march
+from persson_fp.solvers.chebyshev.radau import FORECAST_AFTER_BREAK, MarchTooLong, one_sided, radau_march
 from persson_fp.theory.strip import strip_quantities
 
 __all__ = ["check_wall_problem", "solve_moving_wall", "N_MAX_WALL"]
@@ -91,11 +92,6 @@ def check_wall_problem(problem, opts) -> None:
         raise ValueError("method 'chebyshev' marches in V and needs dV/dzeta > 0 at zeta_max; use method='fv'")
 
 
-FORECAST_AFTER_BREAK = 1.05
-"""A march piece forecasts its cost once it is a tenth of its span in ln V on, and one that starts at a break of the
-operator (the roll-off's kink) not before this times its start: the first steps are graded (from the narrow start;
-from the break, where the wall value's derivative jumps and a boundary layer forms at the wall), and their pace in
-ln V over-forecasts (measured 2.5x after 8 steps on the moving-wall scene W; thousands of steps from a break)."""
 _DU = 1e-3
 """The step in ln zeta of the 5-point differences that give d beta / dV (truncation ~ _DU^4, round-off ~ eps / _DU)."""
 _ONE_SIDED = np.array([-25.0, 48.0, -36.0, 16.0, -3.0]) / 12.0
@@ -369,7 +365,7 @@ def _march(march, A_of, y0, V0, V, breaks, tol_t, norm, floor, budget, nodes, re
     for a, b in zip(points[:-1], points[1:]):
         tol_piece = tol_t * math.log(b / a) / log_span
         if len(points) > 2:  # (a stage on the break takes the operator of this piece's side: one-sided limits)
-            A_of = _one_sided(A_full, a if a != V0 else -math.inf, b if b != V else math.inf)
+            A_of = one_sided(A_full, a if a != V0 else -math.inf, b if b != V else math.inf)
         replay = None if nodes is None else [v for v in nodes if a * (1.0 + 1e-12) < v <= b * (1.0 + 1e-12)]
         if record and record[-1] == a:  # (the march records its start again)
             record.pop()
@@ -395,18 +391,6 @@ def _march(march, A_of, y0, V0, V, breaks, tol_t, norm, floor, budget, nodes, re
         for key, val in st.items():
             stats[key] = stats.get(key, 0) + val
     return y, est, stats
-
-
-def _one_sided(A_of, lo: float, hi: float):
-    """``A_of`` on the piece [lo, hi] between breaks: points within 1e-12 of an end (a stage on it) are moved
-    inside, so that the operator there is its limit from within the piece, not the other side's."""
-    lo_in, hi_in = lo * (1.0 + 1e-12), hi * (1.0 - 1e-12)
-
-    def piece(V):
-        return A_of(min(max(V, lo_in), hi_in))
-
-    piece.many = lambda Vs: A_of.many(np.clip(Vs, lo_in, hi_in))
-    return piece
 
 
 def _too_long(err, tol_t, budget, where) -> str:
