@@ -18,11 +18,12 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   no matrix exponential), step doubling for the local error, whose signed estimates are propagated through the
   march for its estimate of the global error (:mod:`persson_fp.solvers.chebyshev.radau`); the partner runs replay
   its steps.  The march stops at the spectrum's roll-off, where dV/dzeta has a kink (a step across it is first
-  order and its step-doubling estimate blind).  Every part of the estimate over a third of tol is refined at once, at its measured rate.  The march
-  forecasts its cost after a few steps and is refused at once if the solve would exceed its budget (``max_time``;
-  by default ``MARCH_TIME_BUDGET`` = 10 s on this path), naming the tol that would fit and the time it would
-  take.  ``march="magnus"`` takes the older fourth-order commutator-free exponential steps instead
-  (:mod:`persson_fp.solvers.chebyshev.magnus`); ``info["march"]`` counts the steps, rejected steps and solves.
+  order and its step-doubling estimate blind).  Every part of the estimate over a third of tol is refined at once,
+  at its measured rate.  The march forecasts its cost after a few steps and is refused at once if the solve would
+  exceed its budget (``max_time``; by default ``MARCH_TIME_BUDGET`` = 10 s on this path), naming the tol that
+  would fit and the time it would take.  ``march="magnus"`` takes the older fourth-order commutator-free
+  exponential steps instead (:mod:`persson_fp.solvers.chebyshev.magnus`; not stopped at the roll-off);
+  ``info["march"]`` counts the steps, rejected steps and solves.
 * On the first two paths the loads share one plain Chebyshev grid and the modes of its operator (one
   eigendecomposition of the adjoint for every load and station; :mod:`persson_fp.solvers.chebyshev.shared`,
   ``info["loads"]``), with no start at V0, where that grid's degree stays within reach; else the per-load grids below.
@@ -489,7 +490,9 @@ class ChebyshevSolver(Solver):
                 A_of if len(points) == 2 else one_sided(A_of, a if a != V0 else -math.inf, b if b != V else math.inf)
             )
             tol_piece = tol_t * math.log(b / a) / log_span
-            h0 = None if a == V0 else 1e-5 * a  # (from a kink: graded steps, as from the narrow start)
+            # (past a kink the solution stays smooth -- only the coefficients' derivative jumps -- so the march
+            # goes on at the step it had reached before it)
+            h0 = None if a == V0 or not record or len(record) < 2 else record[-1] - record[-2]
             if replaying:
                 replay = [v for v in nodes if a * (1.0 + 1e-12) < v <= b * (1.0 + 1e-12)]
                 y, e, st = radau_march(piece, y, a, b, tol_piece, norm, floor, h0, self._deadline, nodes=replay)
