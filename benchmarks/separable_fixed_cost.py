@@ -6,8 +6,9 @@ B2 = (1 + p/(2 p_bar)) dV/dzeta (separable: b(p) dV/dzeta), B1 = 0.  Reference: 
 ``benchmarks/general_engine.py`` (its uncertainty ~1e-10).
 
 Parts of a ``chebyshev`` call at tol = 1e-4 (medians over ``--repeats`` calls, the parts timed within the same
-calls): building the solver (options, the coefficients' sampling that finds the separable form and checks the
-callables: validation), the solver's own numerical work (``sol.wall_time``), the rest of ``Solver.run`` (building
+calls; the shares of medians need not add to 100 %, and a part below the timing noise can come out negative):
+building the solver (options, the coefficients' sampling that finds the separable form and checks the callables:
+validation), the solver's own numerical work (``sol.wall_time``), the rest of ``Solver.run`` (building
 the ``Solution``, its invariant checks), and what ``pf.solve`` adds (whole call less those; BLAS thread limits,
 dispatch); ``auto``'s probe is ``auto call - chebyshev call`` (called in turn).
 
@@ -85,7 +86,8 @@ def main(argv=None):
     solver_cls = get_solver("chebyshev")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        parts = []  # (validation, numerical work, the rest of run()) of the same calls
+        parts = []  # (validation, numerical work, the rest of run(), pf.solve's own) of the same repeat
+        calls = []
         for _ in range(repeats + 1):
             with blas_threads(1):  # (as pf.solve runs it)
                 t0 = time.perf_counter()
@@ -93,9 +95,13 @@ def main(argv=None):
                 t1 = time.perf_counter()
                 sol = solver.run()
                 t2 = time.perf_counter()
-            parts.append((t1 - t0, sol.wall_time, t2 - t1 - sol.wall_time))
-        t_valid, t_work, t_rest = (statistics.median(x[k] for x in parts[1:]) for k in range(3))
-        t_call = _median_of(lambda: pf.solve(fp, "chebyshev", tol=TARGET), repeats)
+            t3 = time.perf_counter()
+            pf.solve(fp, "chebyshev", tol=TARGET)  # (in turn: its own = this call less the parts just timed)
+            t4 = time.perf_counter()
+            parts.append((t1 - t0, sol.wall_time, t2 - t1 - sol.wall_time, (t4 - t3) - (t2 - t0)))
+            calls.append(t4 - t3)
+        t_valid, t_work, t_rest, t_own = (statistics.median(x[k] for x in parts[1:]) for k in range(4))
+        t_call = statistics.median(calls[1:])
         auto = pf.solve(fp, "auto", tol=TARGET)
         # the whole calls in turn
         tc, ta, th = [], [], []
@@ -114,11 +120,11 @@ def main(argv=None):
         {"part": "validation (options, coefficients sampled once, the form found)", "seconds": t_valid},
         {"part": "numerical work (sol.wall_time)", "seconds": t_work},
         {"part": "Solution and its invariant checks (run() less the work)", "seconds": t_rest},
-        {"part": "pf.solve's own (threads, dispatch: call less the three)",
-         "seconds": t_call - t_valid - t_work - t_rest},
+        {"part": "pf.solve's own (threads, dispatch: a call less the three timed just before it)",
+         "seconds": t_own},
         {"part": "whole chebyshev call", "seconds": t_call},
-        {"part": "auto's probe (auto call less chebyshev call, in turn)",
-         "seconds": statistics.median(ta) - statistics.median(tc)},
+        {"part": "auto's probe (auto call less chebyshev call, in turn: median of the differences)",
+         "seconds": statistics.median(a - c for a, c in zip(ta, tc))},
     ]  # fmt: skip
     for r in rows:
         r["share"] = r["seconds"] / t_call
@@ -141,7 +147,8 @@ def main(argv=None):
             ["part of a chebyshev call (tol=1e-4)", "time", "share"],
             [[r["part"], f"{r['seconds'] * 1e3:.3g} ms", f"{r['share']:.0%}"] for r in rows],
         )
-        + "\n\n"
+        + "\n\nThe parts are medians over calls: they need not add up, and one below the timing noise (a few 0.1 ms "
+        "on this shared machine) can come out negative.\n\n"
         + markdown_table(
             ["whole call", "median", "true L1", "hand CN time / this"],
             [
