@@ -57,7 +57,7 @@ def _peak(pr, method, **opts) -> float:
     "name, problem, method, opts",
     [
         ("fv, reference (trajectory kept)", pf.ContactProblem.reference, "fv", {"n_p": 400, "n_steps": 400}),
-        ("fv, moving wall (front-fixed)", _moving_wall, "fv", {"n_p": 400, "n_steps": 400}),
+        ("fv, moving wall (front-fixed)", _moving_wall, "fv", {"n_p": 3200, "n_steps": 400}),
         ("chebyshev, exponential path", _separable, "chebyshev", {"n_p": 60}),
     ],
 )
