@@ -127,3 +127,18 @@ def test_a_march_over_its_time_budget_is_refused_after_a_few_steps_naming_what_i
     with pytest.raises(pf.SolverError, match=r"max_time") as err:
         pf.solve(pr, method="chebyshev", tol=1e-8, max_time=0.05)
     assert re.search(r"loosen tol to about \d|would take about \S+ s|max_time = 0.05 s exceeded", str(err.value))
+
+
+def test_wall_row_operators_are_the_generator_with_its_wall_rows():
+    # the march's batched assembly against the one-operator functions, element by element, with and without drift
+    rng = np.random.default_rng(3)
+    grid = collocation.chebyshev_grid(30, np.array([3.0, 5.0]), np.array([0.5, 1.0]), np.array([0.1, 0.3]))
+    ops = collocation.WallRowOperators(grid)
+    for drift in (None, "zero", "random"):
+        bc = []
+        for _ in range(3):
+            b = rng.uniform(0.1, 2.0, (2, 31))
+            c = None if drift is None else np.zeros((2, 31)) if drift == "zero" else rng.standard_normal((2, 31))
+            bc.append((b, c))
+        want = np.stack([collocation.with_wall_rows(grid, collocation.generator(grid, b, c), b, c) for b, c in bc])
+        assert np.array_equal(ops(bc), want)

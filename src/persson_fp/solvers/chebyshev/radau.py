@@ -352,7 +352,7 @@ def radau_march(
             ops = operators(A_of, np.concatenate([V + C * h, V + 0.5 * C * h, V + 0.5 * h + 0.5 * C[:2] * h]))
             st: list = []
             rel = _sweep_rel(y, unit, tol * math.log1p(h / V) / log_span)  # (the local target, relax = 1)
-            g = None if prev is None or h > EXTRAPOLATE_MAX * prev[0] else _mix(_extrapolation(h / prev[0]), prev[1])
+            g = _guess([] if prev is None else [prev], h)
             full = radau_step(A_of, V, h, y, ops[:3], (ops[5], factor(ops[5], h)), g, (rel,), stages=st)
             frozen = (ops[5], factor(ops[5], 0.5 * h))  # (the half steps share the operator at V + h/2, its LUs)
             # first guesses of the half steps' stages: the full step's collocation polynomial (its error is the
