@@ -77,8 +77,8 @@ def cases(quick: bool) -> list[tuple[str, str, str, str, dict]]:
     out = []
     for grp, key in (("fv, moving wall (W)", "W"), ("fv, general (A)", "A")):
         out += [(grp, f"n_p = n_steps = {n}", key, "fv", {"n_p": n, "n_steps": n}) for n in sizes]
-        if quick:  # (a case whose model sits mid-band: at n_p = n_steps = 400 the model's sum of the per-cell and
-            # per-step parts is 1.7x, and the traced peak moved 20 % between runs of the test suite)
+        if quick:  # (a case whose model sits mid-band: at n_p = n_steps = 400 the traced peak moved 20 % between
+            # runs of the test suite)
             out += [(grp, "n_p = 3200, n_steps = 400", key, "fv", {"n_p": 3200, "n_steps": 400})]
         else:  # (12 800 cells with 400 steps: n_p = n_steps = 12 800 takes 3-6 min under tracemalloc)
             out += [

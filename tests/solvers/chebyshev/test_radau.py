@@ -142,3 +142,12 @@ def test_wall_row_operators_are_the_generator_with_its_wall_rows():
             bc.append((b, c))
         want = np.stack([collocation.with_wall_rows(grid, collocation.generator(grid, b, c), b, c) for b, c in bc])
         assert np.array_equal(ops(bc), want)
+
+
+@pytest.mark.parametrize("r", [0.3, 1.0, 1.7, 2.5])
+def test_first_guesses_extrapolate_a_cubic_through_the_step_exactly(r):
+    # the collocation polynomial of a step is the cubic through 0 at tau = 0 and the stage increments at c_i: a cubic
+    # u(tau) with u(0) = 0 is reproduced at the next step's stages 1 + r c_j, less u(1)
+    u = lambda t: 0.7 * t - 1.3 * t**2 + 0.4 * t**3  # noqa: E731
+    W = radau._extrapolation(r)
+    assert np.allclose(W @ u(radau.C), u(1.0 + r * radau.C) - u(1.0), rtol=0, atol=1e-13)

@@ -100,12 +100,16 @@ EXTRAPOLATE_MAX = 2.5
 polynomial (Hairer & Wanner, Sec. IV.8: starting values); longer ones start from the explicit Euler stages."""
 
 
+_OTHER = np.array([[k for k in range(4) if k != i] for i in range(1, 4)])
+_LAGRANGE_DEN = _NODES[1:, None] - _NODES[_OTHER]
+"""(3, 3): the Lagrange basis of the nodes 0, c_1, c_2, c_3 at c_i: the other nodes' indices and N_i - N_k."""
+
+
 def _extrapolation(r: float) -> np.ndarray:
     """(3, 3): the last step's collocation polynomial u (through 0 at tau = 0 and its stage increments at c_i, tau in
     units of that step) at the next step's stages tau = 1 + r c_j, less u(1): the next step's stage increments."""
     t = 1.0 + r * C
-    W = np.array([[np.prod([(tj - _NODES[k]) / (_NODES[i] - _NODES[k]) for k in range(4) if k != i])
-                   for i in range(1, 4)] for tj in t])  # fmt: skip
+    W = np.prod((t[:, None, None] - _NODES[_OTHER][None]) / _LAGRANGE_DEN[None], axis=-1)
     W[:, 2] -= 1.0
     return W
 
