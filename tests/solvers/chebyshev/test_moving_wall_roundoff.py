@@ -94,3 +94,18 @@ def test_the_named_accuracy_is_met_against_the_strip(marches):
         true = abs(float(np.ravel(getattr(sol, q))[-1]) - float(np.ravel(getattr(ex, q))[-1]))
         assert true <= reach, (q, true, reach)
         assert true <= float(np.max(sol.info["error_estimate"][q])) + 1e-11, q
+
+
+def test_a_tol_between_the_first_and_the_last_degree_floors_is_refused_before_any_march(marches):
+    # tol 5e-10 on scene W: above the floor at the first degree, below the floor at the degree the loop ends at near
+    # the floor (1.3x the first); it ran a pass of three marches (~2.5 s) before its refusal
+    pr, tol = scene_w(), 5e-10
+    V_out = np.asarray(pr.V(np.array([float(pr.zeta_max)])), dtype=float)
+    n1, frac = cw._start_of(pr, V_out, tol, {"V0_fraction": None, "n_p": None})
+    assert cw._floor_at(pr, V_out, cw._Wall(pr), n1, frac) < tol
+    with pytest.raises(SolverError, match="below the round-off floor") as err:
+        pf.solve(pr, "chebyshev", tol=tol)
+    msg = str(err.value)
+    assert not marches, msg
+    assert int(_named(msg, "at degree")) == int(np.ceil(1.3 * n1)) and _named(msg, "operator:") > tol, msg
+    assert f"a fixed n_p = {n1} runs anyway" in msg

@@ -44,8 +44,9 @@ below 4 eps n^2) and the residual of the area balance A_el + A_pl + A_non
 degree is raised, V0 lowered or the march tightened, whichever part dominates, until the estimate meets it.  The
 round-off floor is computed from the operators alone (``_floor_at``, milliseconds) and grows along every step of that
 loop, so a tol below it is refused before any march, and again before a pass whose floor would exceed tol: a
-:class:`~persson_fp.SolverError` naming tol, the floor, the degree and a tol within reach (tol = 1e-10 and 1e-12 on
-the moving-wall scene W in ~0.01 s; they took ~5 s, one or two passes of three marches, before).
+:class:`~persson_fp.SolverError` naming tol, the floor, the degree and a tol within reach.  A tol close to the floor
+is refused before any march too if the floor at the degree where the loop then ends, 1.3x its first, exceeds it
+(a first pass near the floor has not met tol; a fixed ``n_p`` runs anyway).
 """
 
 from __future__ import annotations
@@ -469,8 +470,15 @@ def solve_moving_wall(
     tol = o["tol"]
     wall = _Wall(pr)
     n, frac = _start_of(pr, V_out, tol, o)
-    if o["n_p"] is None and (f0 := _floor_at(pr, V_out, wall, n, frac)) > tol:  # refused before any march
-        _unreachable(pr, V_out, wall, tol, n, f0, o)
+    if o["n_p"] is None:  # refused before any march: the floor at the first degree, and at the degree the loop
+        # ends at where tol is close to the floor (1.3x the first: a first pass there never met it, measured on
+        # scene W and the nearly constant wall, tol 9e-11 ... 3e-9; a fixed n_p skips this forecast)
+        n_end = min(int(math.ceil(1.3 * n)), N_MAX_WALL)
+        if (f0 := _floor_at(pr, V_out, wall, n, frac)) > tol:
+            _unreachable(pr, V_out, wall, tol, n, f0, o)
+        if (f_end := _floor_at(pr, V_out, wall, n_end, frac)) > tol:
+            _unreachable(pr, V_out, wall, tol, n_end, f_end, o, f" (where the refinement ends near the floor; a fixed "
+                         f"n_p = {n} runs anyway)")  # fmt: skip
     tol_t = tol / 4.0
     budget = (time.perf_counter() + max_time, max_time, budget_name, tol)  # (deadline, max_time, whose, tol)
     march = o["march"] or "radau"
