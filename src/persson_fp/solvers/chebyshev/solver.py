@@ -19,11 +19,13 @@ n_p where P is smooth).  Two paths, named in ``info["path"]``:
   march for its estimate of the global error (:mod:`persson_fp.solvers.chebyshev.radau`); the partner runs replay
   its steps.  The march stops at the spectrum's roll-off, where dV/dzeta has a kink (a step across it is first
   order and its step-doubling estimate blind).  Every part of the estimate over a third of tol is refined at once,
-  at its measured rate.  The march forecasts its cost after a few steps and is refused at once if the solve would
-  exceed its budget (``max_time``; by default ``MARCH_TIME_BUDGET`` = 10 s on this path), naming the tol that
+  at its measured rate (the degree's first refinement at an assumed one, ``GRID_RATE_0``).  The march forecasts its
+  cost after a few steps, and the loop the next try's before it runs, and either is refused at once if the solve
+  would exceed its budget (``max_time``; by default ``MARCH_TIME_BUDGET`` = 10 s on this path), naming the tol that
   would fit and the time it would take.  ``march="magnus"`` takes the older fourth-order commutator-free
   exponential steps instead (:mod:`persson_fp.solvers.chebyshev.magnus`; not stopped at the roll-off);
-  ``info["march"]`` counts the steps, rejected steps and solves.
+  ``info["march"]`` counts the steps, rejected steps and solves, and lists the tries (``"tries"``: degree, start
+  fraction, march tol, seconds, the forecast of those seconds, the estimate and its grid, start and time parts).
 * On the first two paths the loads share one plain Chebyshev grid and the modes of its operator (one
   eigendecomposition of the adjoint for every load and station; :mod:`persson_fp.solvers.chebyshev.shared`,
   ``info["loads"]``), with no start at V0, where that grid's degree stays within reach; else the per-load grids below.
@@ -79,6 +81,11 @@ estimate exceeds a third of tol): the march's own estimate -- its local estimate
 its tolerance on the families of ``benchmarks/honesty.py --method chebyshev`` (the local targets are met with room,
 and the evolution damps early errors), so at 1x the march over-delivered and the result's true error sat ~70x below
 tol."""
+GRID_RATE_0 = 0.12
+"""The march's first degree refinement assumes the grid part falls as exp(-GRID_RATE_0 n) (later ones use the rate
+measured between the last two degrees): measured 0.08-0.11 a node between tries at n = 60-180 on the shifted
+squared-Bessel and Ornstein--Uhlenbeck families of ``benchmarks/honesty.py --method chebyshev``, faster on the
+smoother benchmark scenes A and B.  The old first step, 1.3x the degree, left most of those solves a third try."""
 MARCHES = ("radau", "magnus")
 """The marches of V-dependent operators: Radau IIA (the default, :mod:`.radau`), exponential steps (:mod:`.magnus`)."""
 MARCH_TIME_BUDGET = 10.0
@@ -438,18 +445,45 @@ class ChebyshevSolver(Solver):
     def _out_of_time(self, where: str):
         out_of_time(getattr(self, "_budget", self.max_time), where)
 
+    def _forecast_try(self, tries, now, worst: float, tol: float, runs: int) -> float:
+        """Refuse before a refinement forecast over the time left, naming the forecast: the last try took
+        ``tries[-1]["seconds"]`` at its (degree, march tol, start fraction); the next, at ``now``, costs that times
+        the degree's growth squared (the operators, their LUs and the sweeps: between n^2 and n^3 at n = 40-120),
+        the steps of the tighter march (tol^(-1/5): order 5) and of the longer span ln(1 / V0_fraction).  The
+        forecast is kept in the next try's entry (``info["march"]["tries"]``), which records the seconds it took.
+        The refinement sizes each part of the estimate to its share of tol, so the next try is meant to be the last:
+        the forecast of the next try is the forecast of the solve.  Returns the forecast (seconds)."""
+        from persson_fp.results.invariants import SolverError
+
+        last = tries[-1]
+        n0, t0, f0 = last["n_p"], last["march_tol"], last["V0_fraction"]
+        n1, t1, f1 = now
+        grow = (n1 / n0) ** 2 * (t0 / t1) ** 0.2 * math.log(1.0 / f1) / math.log(1.0 / f0)
+        need, left = last["seconds"] * grow, self._deadline - time.perf_counter()
+        if need <= left:
+            return need
+        given = "max_time" if self._budget == self.max_time else f"the default budget of this path, {self._budget:g} s"
+        fits = f"a tol of about {1.5 * worst:.1e} fits -- loosen tol to it, " if 1.5 * worst < 0.1 else ""
+        raise SolverError(
+            f"chebyshev: after {runs} runs ({sum(t['seconds'] for t in tries):.3g} s) the error estimate is "
+            f"{worst:.2e} over tol = {tol:.3g}; the next refinement (degree {n1}, march tol {t1:.2g}, V0 fraction "
+            f"{f1:.2g}) is forecast to take ~{need:.3g} s, over the {max(left, 0.0):.3g} s left of {given} "
+            f"({self._budget:.3g} s in all); {fits}pass a larger max_time (seconds) or use method='fv'"
+        )
+
     def _refine(self, n, frac, tol_t, tol, grid, start, time_part):
         """The next (degree, start fraction, march tol) of the Radau path: every part of the estimate over its share
         of tol (a third each) is refined at once, by the rate it was measured to fall at -- the start's error as
-        V0^2 (the fraction cut by sqrt(share / part), 4x to 16x), the degree's geometrically (the rate between the
-        last two degrees, else 1.3x the degree, at most 2x), the march's as its tol -- instead of one part a try."""
+        V0^2 (the fraction cut by sqrt(share / part), 4x to 16x), the degree's geometrically (at the rate between the
+        last two degrees, else :data:`GRID_RATE_0`; 1.15x to 2x the degree), the march's as its tol -- instead of one
+        part a try."""
         share = tol / 3.0
         prev = getattr(self, "_grid_seen", None)
         self._grid_seen = (n, grid)
         n_next = n
         if grid > share:
             rate = math.log(prev[1] / grid) / (n - prev[0]) if prev and prev[1] > grid and n > prev[0] else 0.0
-            need = n + math.log(grid / share) / rate if rate > 0 else 1.3 * n
+            need = n + math.log(grid / share) / (rate if rate > 0 else GRID_RATE_0)
             n_next = int(math.ceil(min(max(need, 1.15 * n), 2.0 * n)))
         if start > share and frac > 1e-6:
             frac *= float(np.clip(math.sqrt(share / start), 1.0 / 16.0, 0.25))
@@ -563,13 +597,17 @@ class ChebyshevSolver(Solver):
         self._deadline = time.perf_counter() + self._budget
         self._grid_seen = None
         best = None  # the smallest worst estimate so far (tol runs)
+        tries, forecast = [], None  # (what each try of the loop ran and took; on a march, its forecast)
         if o["n_p"] is None and (f0 := self._floor_at(n, frac, p_max)) > tol:  # refused before any run
             self._unreachable(tol, n, f0, None, p_max)
         while True:
             if time.perf_counter() > self._deadline:
                 self._out_of_time(f"{runs} runs done, degree {n}")
             self.check_degree_memory(n)
+            t_try = time.perf_counter()
             main, grid_part, start_part = self._three_runs(n, frac, p_max, tol_t)
+            took = time.perf_counter() - t_try
+            tries.append({"n_p": n, "V0_fraction": frac, "march_tol": tol_t, "seconds": took, "forecast_s": forecast})
             runs += 3
             far, balance, t_err = self._far, self._balance, self._time_err
             for key in self._all:
@@ -597,6 +635,10 @@ class ChebyshevSolver(Solver):
             est["contact_area"] = np.maximum(est["contact_area"], est["L1"])
             est["noncontact_area"] = np.maximum(est["noncontact_area"], est["L1"] + est["plastic_area"])
             worst = max(float(np.max(est[q])) for q in ("L1", "contact_area", "plastic_area", "noncontact_area"))
+            grid_worst = max(float(np.max(v)) for v in (L1_g, dA_g, dP_g, dN_g, self._unresolved))
+            start_worst = max(float(np.max(v)) for v in (L1_s, dA_s, dP_s, dN_s)) / 4.0
+            time_worst = float(np.max(t_err))  # (more nodes resolve the start: its quadrature error is the grid's)
+            tries[-1].update(estimate=worst, parts={"grid": grid_worst, "start": start_worst, "time": time_worst})
             if o["n_p"] is not None or worst <= tol:
                 if o["n_p"] is not None and self._tol_given:  # a fixed degree is not raised
                     self._refuse_fixed_degree(n, tol, worst)
@@ -604,12 +646,9 @@ class ChebyshevSolver(Solver):
             if best is not None and worst > best and float(np.max(floor)) >= 0.3 * worst:
                 self._unreachable(tol, n, float(np.max(floor)), best, p_max)  # a higher degree raised the error
             best = worst if best is None else min(best, worst)
-            grid_worst = max(float(np.max(v)) for v in (L1_g, dA_g, dP_g, dN_g))
-            start_worst = max(float(np.max(v)) for v in (L1_s, dA_s, dP_s, dN_s)) / 4.0
-            time_worst = float(np.max(t_err))
-            grid_worst = max(grid_worst, float(np.max(self._unresolved)))  # more nodes resolve the start
             if self.path == "radau":  # (each try is a march: refine every part that is over, by its measured rate)
                 n, frac, tol_t = self._refine(n, frac, tol_t, tol, grid_worst, start_worst, time_worst)
+                forecast = self._forecast_try(tries, (n, tol_t, frac), worst, tol, runs)
             elif time_worst > max(grid_worst, start_worst) and tol_t > 1e-3 * tol:
                 tol_t /= 4.0
             elif start_worst > grid_worst and frac > 1e-6:
@@ -655,7 +694,7 @@ class ChebyshevSolver(Solver):
             "mass_balance_residual": float(np.max(np.abs(balance))),
         }
         if self.path in MARCHES:
-            info["march"] = {**self._stats, "tol": tol_t, "all_runs": total}
+            info["march"] = {**self._stats, "tol": tol_t, "all_runs": total, "tries": tries}
         Pout, p, w, extra = self._output(grids, P, p_max, n)
         info["grid"].update(extra)
         # the polynomial's ripple where P is ~0 (tails, next to the walls) is within the estimate: set to 0
