@@ -385,6 +385,19 @@ def honesty():
             table,
         )
     )
+    rows = _rows("honesty_chebyshev.csv")
+    run = [r for r in rows if r["refused"] == "False"]
+    refused = [float(r["seconds"]) for r in rows if r["refused"] != "False"]
+    ratio = [float(r["true_error_over_tol"]) for r in run if r["true_error_over_tol"] not in ("", "nan")]
+    march = [float(r["true_error_over_tol"]) for r in run if r["path"] == "radau" and r["true_error_over_tol"] != "nan"]
+    secs = [float(r["seconds"]) for r in rows]
+    out += [
+        "",
+        f"chebyshev's `tol=` results land at a median true error / tol of {_sig(statistics.median(ratio))} "
+        f"({len(ratio)} results; on the Radau march {_sig(statistics.median(march))}, {len(march)} results). "
+        f"The longest call took {_sig(max(secs))} s; the refused calls (refused openly, naming the cause) took a "
+        f"median {_sig(statistics.median(refused))} s, at most {_sig(max(refused))} s.",
+    ]
     return out
 
 

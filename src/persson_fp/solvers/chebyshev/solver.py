@@ -683,7 +683,7 @@ class ChebyshevSolver(Solver):
                 "+ max(4 eps n^2, eps ||L dV||_1 (n/400)^2) "
                 "+ the start's quadrature error on the grid"
                 + (" + |march - companion march at double steps|" if self.path == "magnus" else "")
-                + (" + the Radau march's summed local estimates (step doubling)" if self.path == "radau" else ""),
+                + (" + the Radau march's propagated local estimates (step doubling)" if self.path == "radau" else ""),
                 {"time": t_err, "roundoff": floor},
             ),
             "far_wall_mass": np.zeros_like(far) if hard else far,

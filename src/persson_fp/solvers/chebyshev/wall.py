@@ -61,7 +61,13 @@ from persson_fp.solvers.base import SolverOutput, zeta_of
 from persson_fp.solvers.chebyshev import collocation
 from persson_fp.solvers.chebyshev.budget import check_degree_memory, out_of_time
 from persson_fp.solvers.chebyshev.magnus import magnus_march
-from persson_fp.solvers.chebyshev.radau import FORECAST_AFTER_BREAK, MarchTooLong, one_sided, radau_march
+from persson_fp.solvers.chebyshev.radau import (
+    EST_DIV_WALL,
+    FORECAST_AFTER_BREAK,
+    MarchTooLong,
+    one_sided,
+    radau_march,
+)
 from persson_fp.theory.strip import strip_quantities
 
 __all__ = ["check_wall_problem", "solve_moving_wall", "N_MAX_WALL"]
@@ -382,7 +388,7 @@ def _march(march, A_of, y0, V0, V, breaks, tol_t, norm, floor, budget, nodes, re
             try:
                 y, e, st = radau_march(
                     A_of, y, a, b, tol_piece, norm, floor, None if a == V0 else 1e-5 * a, budget[0], nodes=replay,
-                    record=record, time_budget=share,
+                    record=record, time_budget=share, est_div=EST_DIV_WALL,
                     forecast_from=a * max(FORECAST_AFTER_BREAK if a != V0 else 1.0, (b / a) ** 0.1),
                 )  # fmt: skip
             except MarchTooLong as err:
