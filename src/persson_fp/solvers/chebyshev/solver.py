@@ -463,13 +463,32 @@ class ChebyshevSolver(Solver):
         if need <= left:
             return need
         given = "max_time" if self._budget == self.max_time else f"the default budget of this path, {self._budget:g} s"
-        fits = f"a tol of about {1.5 * worst:.1e} fits -- loosen tol to it, " if 1.5 * worst < 0.1 else ""
+        reach = self._reach_in(last, left, (t0 / t1) ** 0.2 * math.log(1.0 / f1) / math.log(1.0 / f0), worst, tol)
+        fits = f"a tol of about {reach:.1e} is forecast to fit -- loosen tol to it, " if reach < 0.1 else ""
         raise SolverError(
             f"chebyshev: after {runs} runs ({sum(t['seconds'] for t in tries):.3g} s) the error estimate is "
             f"{worst:.2e} over tol = {tol:.3g}; the next refinement (degree {n1}, march tol {t1:.2g}, V0 fraction "
             f"{f1:.2g}) is forecast to take ~{need:.3g} s, over the {max(left, 0.0):.3g} s left of {given} "
             f"({self._budget:.3g} s in all); {fits}pass a larger max_time (seconds) or use method='fv'"
         )
+
+    def _reach_in(self, last, left: float, other: float, worst: float, tol: float) -> float:
+        """The tol a refusal names: 1.5x the estimate forecast for the largest degree the time left affords (the
+        last try's seconds times the degree's growth squared and ``other``, the growth of its steps), its grid part
+        falling at the rate :meth:`_refine` used, the start and march parts as refined (V0^2 and the march tol);
+        1.5x the estimate reached where no larger degree is affordable.  Never below 1.5 tol."""
+        n0, parts = last["n_p"], last["parts"]
+        n_aff = n0 * math.sqrt(max(left, 0.0) / max(last["seconds"] * other, 1e-9))
+        if n_aff <= n0:
+            return 1.5 * worst
+        f0, f1 = last["V0_fraction"], self._next[1]
+        t0, t1 = last["march_tol"], self._next[2]
+        forecast = (
+            parts["grid"] * math.exp(-self._grid_rate * (n_aff - n0))
+            + parts["start"] * (f1 / f0) ** 2
+            + parts["time"] * t1 / t0
+        )
+        return 1.5 * min(max(forecast, tol), worst)
 
     def _refine(self, n, frac, tol_t, tol, grid, start, time_part):
         """The next (degree, start fraction, march tol) of the Radau path: every part of the estimate over its share
@@ -481,9 +500,10 @@ class ChebyshevSolver(Solver):
         prev = getattr(self, "_grid_seen", None)
         self._grid_seen = (n, grid)
         n_next = n
+        rate = math.log(prev[1] / grid) / (n - prev[0]) if prev and prev[1] > grid and n > prev[0] else 0.0
+        self._grid_rate = rate if rate > 0 else GRID_RATE_0
         if grid > share:
-            rate = math.log(prev[1] / grid) / (n - prev[0]) if prev and prev[1] > grid and n > prev[0] else 0.0
-            need = n + math.log(grid / share) / (rate if rate > 0 else GRID_RATE_0)
+            need = n + math.log(grid / share) / self._grid_rate
             n_next = int(math.ceil(min(max(need, 1.15 * n), 2.0 * n)))
         if start > share and frac > 1e-6:
             frac *= float(np.clip(math.sqrt(share / start), 1.0 / 16.0, 0.25))
@@ -492,6 +512,7 @@ class ChebyshevSolver(Solver):
             tol_t *= float(np.clip(share / time_part, 1.0 / 16.0, 0.25))
         if n_next == n and not (start > share or time_part > share):
             n_next = int(math.ceil(1.3 * n))  # (no part over its share but the sum over tol: the largest is the grid's)
+        self._next = (n_next, frac, tol_t)
         return n_next, frac, tol_t
 
     def _kinks(self) -> list:
