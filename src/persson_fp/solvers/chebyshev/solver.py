@@ -450,20 +450,21 @@ class ChebyshevSolver(Solver):
         ``tries[-1]["seconds"]`` at its (degree, march tol, start fraction); the next, at ``now``, costs that times
         the degree's growth squared (the operators, their LUs and the sweeps: between n^2 and n^3 at n = 40-120),
         the steps of the tighter march (tol^(-1/5): order 5) and of the longer span ln(1 / V0_fraction).  The
-        forecast is kept in the next try's entry (``info["march"]["tries"]``), which records the seconds it took.
-        The refinement sizes each part of the estimate to its share of tol, so the next try is meant to be the last:
-        the forecast of the next try is the forecast of the solve.  Returns the forecast (seconds)."""
+        forecast is kept in the next try's entry (``info["march"]["tries"]``), beside the seconds it took.  The
+        refinement sizes each part of the estimate to its share of tol, but the degree's rate is a guess until two
+        tries are in: such solves often take a third try, which this forecast does not see until the second is done.
+        Returns the forecast (seconds)."""
         from persson_fp.results.invariants import SolverError
 
         last = tries[-1]
         n0, t0, f0 = last["n_p"], last["march_tol"], last["V0_fraction"]
         n1, t1, f1 = now
-        grow = (n1 / n0) ** 2 * (t0 / t1) ** 0.2 * math.log(1.0 / f1) / math.log(1.0 / f0)
-        need, left = last["seconds"] * grow, self._deadline - time.perf_counter()
+        steps = (t0 / t1) ** 0.2 * math.log(1.0 / f1) / math.log(1.0 / f0)
+        need, left = last["seconds"] * (n1 / n0) ** 2 * steps, self._deadline - time.perf_counter()
         if need <= left:
             return need
         given = "max_time" if self._budget == self.max_time else f"the default budget of this path, {self._budget:g} s"
-        reach = self._reach_in(last, left, (t0 / t1) ** 0.2 * math.log(1.0 / f1) / math.log(1.0 / f0), worst, tol)
+        reach = self._reach_in(last, left, steps, worst, tol)
         fits = f"a tol of about {reach:.1e} is forecast to fit -- loosen tol to it, " if reach < 0.1 else ""
         raise SolverError(
             f"chebyshev: after {runs} runs ({sum(t['seconds'] for t in tries):.3g} s) the error estimate is "
@@ -656,9 +657,10 @@ class ChebyshevSolver(Solver):
             est["contact_area"] = np.maximum(est["contact_area"], est["L1"])
             est["noncontact_area"] = np.maximum(est["noncontact_area"], est["L1"] + est["plastic_area"])
             worst = max(float(np.max(est[q])) for q in ("L1", "contact_area", "plastic_area", "noncontact_area"))
+            # (more nodes resolve the start: its quadrature error counts as the grid's)
             grid_worst = max(float(np.max(v)) for v in (L1_g, dA_g, dP_g, dN_g, self._unresolved))
             start_worst = max(float(np.max(v)) for v in (L1_s, dA_s, dP_s, dN_s)) / 4.0
-            time_worst = float(np.max(t_err))  # (more nodes resolve the start: its quadrature error is the grid's)
+            time_worst = float(np.max(t_err))
             tries[-1].update(estimate=worst, parts={"grid": grid_worst, "start": start_worst, "time": time_worst})
             if o["n_p"] is not None or worst <= tol:
                 if o["n_p"] is not None and self._tol_given:  # a fixed degree is not raised
