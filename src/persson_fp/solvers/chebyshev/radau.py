@@ -13,7 +13,7 @@ are one dense linear system of size 3m (m ~ 40-80 collocation nodes plus the thr
 one LU per step and load -- no matrix exponential is ever formed.
 
 Step control by step doubling: every step is taken once with h and as two steps of h/2; the kept result is the
-two half steps, its local error estimated as :math:`\|y_{h/2,h/2} - y_h\| / (2^q - 1)` with q = 4 (:data:`EST_DIV`),
+two half steps, its local error estimated as :math:`\|y_{h/2,h/2} - y_h\| / (2^q - 1)` with q = 4 (``EST_DIV``),
 one below the classical order 5, which parabolic problems with boundary conditions reduce (Ostermann & Roche, Math.
 Comp. 59 (1992) 403), so the estimate is not below the local error when the order is reduced by one, and about twice
 above it when it is not.  Local errors are held to ``tol`` per unit ln V; the reported estimate of the march is the
@@ -327,8 +327,8 @@ def radau_march(
         No forecast before V reaches this (pressure^2): a march that starts at a jump of the operator (a break
         point, not a narrow start) takes graded steps from there whose pace in ln V says nothing of the rest.
     est_div : float
-        The local error of the two half steps is |two - full| / est_div (:data:`EST_DIV`; the moving wall's
-        :data:`EST_DIV_WALL`).
+        The local error of the two half steps is |two - full| / est_div (``EST_DIV``; the moving wall's
+        ``EST_DIV_WALL``).
 
     Returns
     -------

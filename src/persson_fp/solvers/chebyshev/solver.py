@@ -476,7 +476,7 @@ class ChebyshevSolver(Solver):
     def _reach_in(self, last, left: float, other: float, worst: float, tol: float) -> float:
         """The tol a refusal names: 1.5x the estimate forecast for the largest degree the time left affords (the
         last try's seconds times the degree's growth squared and ``other``, the growth of its steps), its grid part
-        falling at the rate :meth:`_refine` used, the start and march parts as refined (V0^2 and the march tol);
+        falling at the rate ``_refine`` used, the start and march parts as refined (V0^2 and the march tol);
         1.5x the estimate reached where no larger degree is affordable.  Never below 1.5 tol."""
         n0, parts = last["n_p"], last["parts"]
         n_aff = n0 * math.sqrt(max(left, 0.0) / max(last["seconds"] * other, 1e-9))
@@ -495,7 +495,7 @@ class ChebyshevSolver(Solver):
         """The next (degree, start fraction, march tol) of the Radau path: every part of the estimate over its share
         of tol (a third each) is refined at once, by the rate it was measured to fall at -- the start's error as
         V0^2 (the fraction cut by sqrt(share / part), 4x to 16x), the degree's geometrically (at the rate between the
-        last two degrees, else :data:`GRID_RATE_0`; 1.15x to 2x the degree), the march's as its tol -- instead of one
+        last two degrees, else ``GRID_RATE_0``; 1.15x to 2x the degree), the march's as its tol -- instead of one
         part a try."""
         share = tol / 3.0
         prev = getattr(self, "_grid_seen", None)
