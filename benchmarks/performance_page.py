@@ -389,7 +389,11 @@ def honesty():
     run = [r for r in rows if r["refused"] == "False"]
     refused = [float(r["seconds"]) for r in rows if r["refused"] != "False"]
     ratio = [float(r["true_error_over_tol"]) for r in run if r["true_error_over_tol"] not in ("", "nan")]
-    march = [float(r["true_error_over_tol"]) for r in run if r["path"] == "radau" and r["true_error_over_tol"] != "nan"]
+    march = [
+        float(r["true_error_over_tol"])
+        for r in run
+        if r["path"] == "radau" and r["true_error_over_tol"] not in ("", "nan")
+    ]
     secs = [float(r["seconds"]) for r in rows]
     out += [
         "",

@@ -464,7 +464,7 @@ class ChebyshevSolver(Solver):
         if need <= left:
             return need
         given = "max_time" if self._budget == self.max_time else f"the default budget of this path, {self._budget:g} s"
-        reach = self._reach_in(last, left, steps, worst, tol)
+        reach = self._reach_in(last, now, left, steps, worst, tol)
         fits = f"a tol of about {reach:.1e} is forecast to fit -- loosen tol to it, " if reach < 0.1 else ""
         raise SolverError(
             f"chebyshev: after {runs} runs ({sum(t['seconds'] for t in tries):.3g} s) the error estimate is "
@@ -473,17 +473,18 @@ class ChebyshevSolver(Solver):
             f"({self._budget:.3g} s in all); {fits}pass a larger max_time (seconds) or use method='fv'"
         )
 
-    def _reach_in(self, last, left: float, other: float, worst: float, tol: float) -> float:
+    def _reach_in(self, last, now, left: float, other: float, worst: float, tol: float) -> float:
         """The tol a refusal names: 1.5x the estimate forecast for the largest degree the time left affords (the
         last try's seconds times the degree's growth squared and ``other``, the growth of its steps), its grid part
         falling at the rate ``_refine`` used, the start and march parts as refined (V0^2 and the march tol);
-        1.5x the estimate reached where no larger degree is affordable.  Never below 1.5 tol."""
+        1.5x the estimate reached where no larger degree is affordable.  Never below 1.5 tol.  ``now``: the next try's
+        (degree, march tol, start fraction)."""
         n0, parts = last["n_p"], last["parts"]
         n_aff = n0 * math.sqrt(max(left, 0.0) / max(last["seconds"] * other, 1e-9))
         if n_aff <= n0:
             return 1.5 * worst
-        f0, f1 = last["V0_fraction"], self._next[1]
-        t0, t1 = last["march_tol"], self._next[2]
+        _, t1, f1 = now
+        f0, t0 = last["V0_fraction"], last["march_tol"]
         forecast = (
             parts["grid"] * math.exp(-self._grid_rate * (n_aff - n0))
             + parts["start"] * (f1 / f0) ** 2
@@ -513,7 +514,6 @@ class ChebyshevSolver(Solver):
             tol_t *= float(np.clip(share / time_part, 1.0 / 16.0, 0.25))
         if n_next == n and not (start > share or time_part > share):
             n_next = int(math.ceil(1.3 * n))  # (no part over its share but the sum over tol: the largest is the grid's)
-        self._next = (n_next, frac, tol_t)
         return n_next, frac, tol_t
 
     def _kinks(self) -> list:
